@@ -1,0 +1,29 @@
+#!/usr/bin/env bash
+# Installs the Debian packages the project builds with (idempotent: only what is missing).
+# Usage: scripts/setup.sh        (as root on Debian 12; uses sudo when not root)
+set -euo pipefail
+
+packages=(
+  build-essential cmake ninja-build pkg-config git
+  libeigen3-dev          # linear algebra for the geometry core
+  libgtest-dev libgmock-dev  # unit tests
+  libbenchmark-dev       # micro-benchmarks
+  libfmt-dev             # string formatting in diagnostics and output
+  libcli11-dev           # the prs command line
+  nlohmann-json3-dev     # scene JSON output and parsing
+  clang libclang-rt-14-dev  # libFuzzer for the front-end fuzz target
+)
+
+missing=()
+for p in "${packages[@]}"; do
+  dpkg-query -W -f='${Status}' "$p" 2>/dev/null | grep -q "install ok installed" || missing+=("$p")
+done
+
+if ((${#missing[@]})); then
+  echo "setup: installing ${missing[*]}" >&2
+  sudo_cmd=()
+  [[ $(id -u) -eq 0 ]] || sudo_cmd=(sudo)
+  export DEBIAN_FRONTEND=noninteractive
+  "${sudo_cmd[@]}" apt-get update -qq
+  "${sudo_cmd[@]}" apt-get install -y -qq --no-install-recommends "${missing[@]}" >/dev/null
+fi

@@ -1,0 +1,152 @@
+// Tests of ErodeByBox against brute force (all 8 corners inside) for 3D regions and for
+// the footprint semantics of a rotated Rect3D.
+#include <cmath>
+#include <numbers>
+#include <vector>
+
+#include <gtest/gtest.h>
+
+#include "geometry/region.h"
+#include "geometry/rotation.h"
+#include "geometry/test/test_util.h"
+
+namespace prs::geometry {
+namespace {
+
+using testing::RandomRotation;
+using testing::RandomVector;
+
+// Box corners at centre c, projected by P onto the region's hull directions.
+std::vector<Eigen::Vector3d> Corners(const Eigen::Vector3d& c, const Eigen::Matrix3d& R,
+                                     const Eigen::Vector3d& h, const Eigen::Matrix3d& P) {
+  std::vector<Eigen::Vector3d> out;
+  for (const Eigen::Vector3d& k : CalcBoxCorners({Eigen::Vector3d::Zero(), R, h})) {
+    out.push_back(c + P * k);
+  }
+  return out;
+}
+
+bool AllInside(const ConvexRegion& region, const std::vector<Eigen::Vector3d>& points,
+               double tolerance) {
+  for (const auto& p : points) {
+    if (!region.Contains(p, tolerance)) return false;
+  }
+  return true;
+}
+
+struct Counts {
+  int inside = 0, outside = 0;
+};
+
+// Compares erosion with brute force at random centres, skipping a 1e-7 m boundary band.
+Counts CompareWithBruteForce(const ConvexRegion& region, const Eigen::Matrix3d& P,
+                             const std::vector<Eigen::Vector3d>& centres, Rng& rng) {
+  Counts counts;
+  const Eigen::Matrix3d R = RandomRotation(rng);
+  const Eigen::Vector3d h = RandomVector(rng, 0.0, 0.3);
+  const ConvexRegion eroded = ErodeByBox(region, R, h);
+  for (const Eigen::Vector3d& c : centres) {
+    const auto corners = Corners(c, R, h, P);
+    if (AllInside(region, corners, -1e-7) && region.Contains(c, -1e-7)) {
+      EXPECT_TRUE(eroded.Contains(c)) << region.Describe();
+      EXPECT_TRUE(region.ContainsBox({c, R, h}));
+      ++counts.inside;
+    } else if (!AllInside(region, corners, 1e-7) || !region.Contains(c, 1e-7)) {
+      EXPECT_FALSE(eroded.Contains(c)) << region.Describe();
+      EXPECT_FALSE(region.ContainsBox({c, R, h}));
+      ++counts.outside;
+    }
+  }
+  return counts;
+}
+
+std::vector<ConvexRegion> Make3DRegions(Rng& rng) {
+  std::vector<ConvexRegion> regions;
+  regions.push_back(ConvexRegion::MakeCuboid({0.1, 0.2, 0.3}, RandomRotation(rng), 1.2, 0.8, 0.9));
+  std::vector<HalfSpace> hs;  // a random polyhedron around the origin
+  for (int i = 0; i < 10; ++i) {
+    hs.push_back({RandomVector(rng, -1, 1), rng.Uniform(0.4, 0.7)});
+  }
+  regions.push_back(ConvexRegion::MakeConvexPolyhedron(hs));
+  regions.push_back(ConvexRegion::MakeSphere({0, 0, 0}, 0.8));
+  regions.push_back(Intersect(ConvexRegion::MakeSphere({0, 0, 0}, 0.8),
+                              ConvexRegion::MakeHalfSpace({0, 0, -0.2}, {0.2, 0.1, 1})));
+  return regions;
+}
+
+TEST(ErosionTest, MatchesBruteForceIn3D) {
+  Rng rng(31);
+  Counts total;
+  for (int trial = 0; trial < testing::Scaled(40); ++trial) {
+    for (const ConvexRegion& region : Make3DRegions(rng)) {
+      std::vector<Eigen::Vector3d> centres;
+      for (int i = 0; i < 300; ++i) centres.push_back(RandomVector(rng, -0.8, 0.8));
+      const Counts c = CompareWithBruteForce(region, Eigen::Matrix3d::Identity(), centres, rng);
+      total.inside += c.inside;
+      total.outside += c.outside;
+    }
+  }
+  EXPECT_GT(total.inside, 500);
+  EXPECT_GT(total.outside, 500);
+}
+
+TEST(ErosionTest, RotatedRectUsesFootprint) {
+  Rng rng(32);
+  Counts total;
+  for (int trial = 0; trial < testing::Scaled(100); ++trial) {
+    const Eigen::Matrix3d R_table = CalcRotationFromYawPitchRoll(rng.Uniform(-3, 3),
+                                                                 rng.Uniform(-0.5, 0.5), 0);
+    const Eigen::Vector3d p_table = RandomVector(rng, -1, 1);
+    const ConvexRegion top = ConvexRegion::MakeRect3D(p_table, R_table, 1.2, 0.7);
+    const Eigen::Matrix3d P = R_table.leftCols<2>() * R_table.leftCols<2>().transpose();
+    std::vector<Eigen::Vector3d> centres;
+    for (int i = 0; i < 200; ++i) {
+      centres.push_back(p_table + R_table * Eigen::Vector3d(rng.Uniform(-0.7, 0.7),
+                                                            rng.Uniform(-0.45, 0.45), 0));
+    }
+    const Counts c = CompareWithBruteForce(top, P, centres, rng);
+    total.inside += c.inside;
+    total.outside += c.outside;
+  }
+  EXPECT_GT(total.inside, 500);
+  EXPECT_GT(total.outside, 500);
+}
+
+TEST(ErosionTest, CubeCompletelyOnStripGivesSegment) {
+  const ConvexRegion strip = ConvexRegion::MakeRect3D({0, 0, 1}, Eigen::Matrix3d::Identity(), 0.1, 2.0);
+  const ConvexRegion centres = ErodeByBox(strip, Eigen::Matrix3d::Identity(), {0.05, 0.05, 0.05});
+  ASSERT_FALSE(centres.IsEmpty());
+  EXPECT_EQ(centres.dimension(), 1);
+  EXPECT_NEAR(centres.CalcMeasure(), 1.9, 1e-9);
+  // Turned 45°, the cube no longer fits.
+  EXPECT_TRUE(ErodeByBox(strip, CalcRotationZ(std::numbers::pi / 4), {0.05, 0.05, 0.05}).IsEmpty());
+}
+
+TEST(ErosionTest, ExactOrientationDependence) {
+  // A 0.2 × 0.1 footprint on a 0.3 × 0.3 table: the centre range is exact for each yaw.
+  const ConvexRegion top = ConvexRegion::MakeRect3D({0, 0, 0}, Eigen::Matrix3d::Identity(), 0.3, 0.3);
+  for (double yaw : {0.0, 0.3, std::numbers::pi / 2}) {
+    const ConvexRegion c = ErodeByBox(top, CalcRotationZ(yaw), {0.1, 0.05, 0.2});
+    const double wx = 0.3 - 2 * (0.1 * std::abs(std::cos(yaw)) + 0.05 * std::abs(std::sin(yaw)));
+    const double wy = 0.3 - 2 * (0.1 * std::abs(std::sin(yaw)) + 0.05 * std::abs(std::cos(yaw)));
+    EXPECT_NEAR(c.CalcMeasure(), wx * wy, 1e-9) << yaw;
+  }
+}
+
+TEST(ErosionTest, DegenerateErosions) {
+  const ConvexRegion cube = ConvexRegion::MakeCuboid({0, 0, 0}, Eigen::Matrix3d::Identity(), 1, 1, 1);
+  EXPECT_NEAR(ErodeByBox(cube, Eigen::Matrix3d::Identity(), {0, 0, 0}).CalcMeasure(), 1.0, 1e-9);
+  EXPECT_TRUE(ErodeByBox(cube, Eigen::Matrix3d::Identity(), {0.6, 0.1, 0.1}).IsEmpty());
+  const ConvexRegion exact = ErodeByBox(cube, Eigen::Matrix3d::Identity(), {0.5, 0.5, 0.5});
+  EXPECT_EQ(exact.dimension(), 0);  // only the centre fits
+  EXPECT_TRUE(ErodeByBox(ConvexRegion::Empty(), Eigen::Matrix3d::Identity(), {1, 1, 1}).IsEmpty());
+  EXPECT_FALSE(ErodeByBox(ConvexRegion::All(), Eigen::Matrix3d::Identity(), {1, 1, 1}).IsBounded());
+  EXPECT_THROW(ErodeByBox(cube, Eigen::Matrix3d::Identity(), {-1, 0, 0}), std::invalid_argument);
+  const ConvexRegion ball = ErodeByBox(ConvexRegion::MakeSphere({0, 0, 0}, 1), Eigen::Matrix3d::Identity(),
+                                       {0.5, 0.5, 0.5});
+  EXPECT_TRUE(ball.Contains({0, 0, 0}));
+  EXPECT_FALSE(ball.Contains({0.3, 0, 0}));  // corner (0.8, .5, .5) is outside the ball
+}
+
+}  // namespace
+}  // namespace prs::geometry

@@ -1,0 +1,203 @@
+// Calls: user functions (with the call-depth limit), built-in helpers, the math module,
+// vector and region methods. Distributions and region constructors are in call_random.cc.
+#include <cmath>
+
+#include "lang/interp_internal.h"
+
+namespace prs::lang::internal {
+
+using Eigen::Vector3d;
+
+Value Interpreter::EvalCall(const CallExpr& call, SourceSpan span) {
+  const Value callee = Eval(*call.callee);
+  std::vector<Value> args;
+  std::vector<SourceSpan> spans;
+  for (const CallArg& arg : call.args) {
+    args.push_back(Eval(*arg.value));
+    spans.push_back(arg.value->span);
+  }
+  if (const auto* builtin = std::get_if<BuiltinRef>(&callee.data)) {
+    const BuiltinInfo& info = GetBuiltinInfo(builtin->id);
+    const int n = static_cast<int>(args.size());
+    if (n < info.min_args || (info.max_args >= 0 && n > info.max_args)) {
+      Fail(span, "wrong-argument-count",
+           std::string(info.name) + " was given " + std::to_string(n) + " arguments; call it as " +
+               info.signature);
+    }
+    return CallBuiltin(builtin->id, args, spans, span);
+  }
+  if (const auto* fn = std::get_if<FunctionRef>(&callee.data)) {
+    return CallFunction(*fn, call, std::move(args), span);
+  }
+  if (const auto* method = std::get_if<BoundMethod>(&callee.data)) {
+    return CallMethod(*method, args, spans, span);
+  }
+  if (callee.Is<const ClassInfo*>()) {
+    Fail(call.callee->span, "type-error",
+         "classes are not called like functions; create an object with '" +
+             callee.As<const ClassInfo*>()->name + " with PROP VALUE, at V, on X, ...'");
+  }
+  Fail(call.callee->span, "type-error", "a " + TypeName(callee) + " cannot be called");
+}
+
+Value Interpreter::CallFunction(const FunctionRef& fn, const CallExpr& call,
+                                std::vector<Value> args, SourceSpan span) {
+  if (call_depth_ >= options_.limits.max_call_depth) {
+    Fail(span, "limit-exceeded",
+         "function calls nested deeper than " + std::to_string(options_.limits.max_call_depth) +
+             "; is this recursion meant to end?");
+  }
+  Env frame;
+  const auto& params = fn.def->params;
+  size_t positional = 0;
+  for (size_t i = 0; i < call.args.size(); ++i) {
+    if (call.args[i].keyword) {
+      frame[call.args[i].keyword->name] = args[i];
+    } else if (positional < params.size()) {
+      frame[params[positional++].name.name] = args[i];
+    } else {
+      Fail(span, "wrong-argument-count", "too many arguments for '" + fn.def->name.name + "'");
+    }
+  }
+  Env* saved_locals = locals_;
+  const int saved_module = current_module_;
+  current_module_ = fn.module_index;
+  for (const Param& p : params) {
+    if (frame.count(p.name.name)) continue;
+    if (!p.default_value) {
+      Fail(span, "wrong-argument-count",
+           "'" + fn.def->name.name + "' needs a value for '" + p.name.name + "'");
+    }
+    locals_ = saved_locals;  // defaults are evaluated where the function was defined
+    frame[p.name.name] = Eval(*p.default_value);
+  }
+  locals_ = &frame;
+  ++call_depth_;
+  const Flow flow = ExecBody(fn.def->body);
+  --call_depth_;
+  locals_ = saved_locals;
+  current_module_ = saved_module;
+  Value result = flow == Flow::kReturn ? std::move(return_value_) : Value();
+  return_value_ = Value();
+  return result;
+}
+
+Value Interpreter::CallBuiltin(Builtin id, const std::vector<Value>& args,
+                               const std::vector<SourceSpan>& spans, SourceSpan span) {
+  if (id >= Builtin::kSin) return CallMath(id, args, spans, span);
+  if (id >= Builtin::kCuboid && id <= Builtin::kEmpty) return CallRegion(id, args, spans, span);
+  if (id < Builtin::kCuboid) return CallDistribution(id, args, spans, span);
+  auto number = [&](size_t i, const char* what) { return ToNumber(args[i], spans[i], what); };
+  switch (id) {
+    case Builtin::kRangeFn: {
+      double start = 0, stop = number(0, "range's stop"), step = 1;
+      if (args.size() >= 2) start = stop, stop = number(1, "range's stop");
+      if (args.size() == 3) step = number(2, "range's step");
+      if (step == 0) Fail(span, "bad-value", "range's step must not be zero");
+      const double count = std::max(0.0, std::ceil((stop - start) / step));
+      if (count > static_cast<double>(options_.limits.max_loop_iterations)) {
+        Fail(span, "limit-exceeded", "range of " + Repr(count) + " numbers is longer than the "
+                                     "loop limit of one scene");
+      }
+      std::vector<Value> items;
+      for (int64_t i = 0; i < static_cast<int64_t>(count); ++i) items.push_back(start + i * step);
+      return MakeList(std::move(items));
+    }
+    case Builtin::kLen: return static_cast<double>(Iterate(args[0], spans[0]).size());
+    case Builtin::kAbs:
+      if (args[0].Is<Vector3d>()) return Value(Vector3d(args[0].As<Vector3d>().cwiseAbs()));
+      return std::fabs(number(0, "abs's argument"));
+    case Builtin::kMin:
+    case Builtin::kMax: {
+      std::vector<Value> items = args.size() == 1 ? Iterate(args[0], spans[0]) : args;
+      if (items.empty()) Fail(span, "bad-value", "min() and max() need at least one value");
+      double best = ToNumber(items[0], span, "each value");
+      for (const Value& item : items) {
+        const double x = ToNumber(item, span, "each value");
+        best = id == Builtin::kMin ? std::min(best, x) : std::max(best, x);
+      }
+      return best;
+    }
+    case Builtin::kRound: {
+      const double scale = args.size() == 2 ? std::pow(10.0, number(1, "the digits")) : 1.0;
+      return std::nearbyint(number(0, "round's argument") * scale) / scale;
+    }
+    case Builtin::kInt: return std::trunc(number(0, "int's argument"));
+    case Builtin::kFloat: return number(0, "float's argument");
+    case Builtin::kStr: return args[0].Is<StringPtr>() ? args[0] : MakeString(Repr(args[0]));
+    case Builtin::kBool: return Truthy(args[0], spans[0]);
+    case Builtin::kList: return MakeList(Iterate(args[0], spans[0]));
+    case Builtin::kSum: {
+      double total = 0;
+      for (const Value& item : Iterate(args[0], spans[0])) total += ToNumber(item, spans[0], "each value");
+      return total;
+    }
+    default: break;
+  }
+  Fail(span, "internal", "built-in not implemented");
+}
+
+Value Interpreter::CallMath(Builtin id, const std::vector<Value>& args,
+                            const std::vector<SourceSpan>& spans, SourceSpan span) {
+  const double x = ToNumber(args[0], spans[0], "the argument");
+  const double y = args.size() > 1 ? ToNumber(args[1], spans[1], "the second argument") : 0;
+  double r = 0;
+  switch (id) {
+    case Builtin::kSin: r = std::sin(x); break;
+    case Builtin::kCos: r = std::cos(x); break;
+    case Builtin::kTan: r = std::tan(x); break;
+    case Builtin::kAsin: r = std::asin(x); break;
+    case Builtin::kAcos: r = std::acos(x); break;
+    case Builtin::kAtan: r = std::atan(x); break;
+    case Builtin::kAtan2: r = std::atan2(x, y); break;
+    case Builtin::kSqrt: r = std::sqrt(x); break;
+    case Builtin::kExp: r = std::exp(x); break;
+    case Builtin::kLog: r = args.size() > 1 ? std::log(x) / std::log(y) : std::log(x); break;
+    case Builtin::kRadians: r = x * M_PI / 180; break;
+    case Builtin::kDegrees: r = x * 180 / M_PI; break;
+    case Builtin::kFloor: r = std::floor(x); break;
+    case Builtin::kCeil: r = std::ceil(x); break;
+    case Builtin::kFabs: r = std::fabs(x); break;
+    case Builtin::kHypot: r = std::hypot(x, y); break;
+    default: break;
+  }
+  if (!std::isfinite(r)) {
+    Fail(span, "bad-value", std::string(GetBuiltinInfo(id).name) + " of " + Repr(args[0]) +
+                                " is not a finite number (outside the function's domain)");
+  }
+  return r;
+}
+
+Value Interpreter::CallMethod(const BoundMethod& method, const std::vector<Value>& args,
+                              const std::vector<SourceSpan>& spans, SourceSpan span) {
+  const Value& receiver = *method.receiver;
+  const size_t want = (method.name == "norm" || method.name == "normalized") ? 0 : 1;
+  if (args.size() != want) {
+    Fail(span, "wrong-argument-count", "'" + method.name + "' takes " + std::to_string(want) +
+                                           " argument" + (want == 1 ? "" : "s"));
+  }
+  if (const auto* v = std::get_if<Vector3d>(&receiver.data)) {
+    if (method.name == "norm") return v->norm();
+    if (method.name == "normalized") {
+      if (v->norm() < 1e-12) Fail(span, "bad-value", "cannot normalize a zero vector");
+      return Value(Vector3d(v->normalized()));
+    }
+    const Vector3d other = ToVector(args[0], spans[0], "the argument");
+    if (method.name == "dot") return v->dot(other);
+    return Value(Vector3d(v->cross(other)));
+  }
+  const auto& region = receiver.As<RegionPtr>();
+  if (method.name == "contains") {
+    if (const auto* object = std::get_if<ObjectRef>(&args[0].data)) {
+      if (scene_.objects[object->index].cls->has_box) return region->ContainsBox(BoxOf(object->index));
+    }
+    return region->Contains(ToVector(args[0], spans[0], "the argument of 'contains'"));
+  }
+  if (!args[0].Is<RegionPtr>()) {
+    Fail(spans[0], "type-error", "'intersect' needs a region, but this is a " + TypeName(args[0]));
+  }
+  return RegionPtr(std::make_shared<geometry::ConvexRegion>(
+      geometry::Intersect(*region, *args[0].As<RegionPtr>())));
+}
+
+}  // namespace prs::lang::internal

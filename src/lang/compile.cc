@@ -1,0 +1,178 @@
+// The compiler driver: reads the main file, loads `from NAME import *` modules (searching the
+// importing file's directory, then the search path; cycles are errors), parses everything, and
+// hands the modules to the resolver, which builds the class table and creation plans.
+#include <filesystem>
+#include <fstream>
+#include <sstream>
+
+#include "lang/lang.h"
+#include "lang/parser.h"
+#include "lang/resolve.h"
+
+namespace prs::lang {
+namespace {
+
+class DiskFileSystem final : public FileSystem {
+ public:
+  std::optional<std::string> ReadFile(const std::string& path) const override {
+    std::error_code error;
+    if (!std::filesystem::is_regular_file(path, error)) return std::nullopt;
+    std::ifstream in(path, std::ios::binary);
+    if (!in) return std::nullopt;
+    std::ostringstream text;
+    text << in.rdbuf();
+    return text.str();
+  }
+};
+
+// Loads modules depth-first as the parser meets their imports.
+class ModuleLoader {
+ public:
+  ModuleLoader(CompiledProgram& program, const CompileOptions& options,
+               DiagnosticEngine& diagnostics)
+      : program_(program), options_(options), diagnostics_(diagnostics),
+        fs_(options.file_system ? *options.file_system : RealFileSystem()) {}
+
+  // Parses `text` as module `name` and every module it imports; returns its index.
+  int LoadModule(const std::string& name, const std::string& path, std::string text) {
+    const FileId file = program_.sources.AddFile(path, std::move(text));
+    loading_.push_back(name);
+    ParseOptions parse_options;
+    const std::string directory = std::filesystem::path(path).parent_path().string();
+    parse_options.import_classes = [this, directory](const std::string& module,
+                                                     SourceSpan where) {
+      return ImportClasses(module, directory, where);
+    };
+    auto info = std::make_unique<ModuleInfo>();
+    info->name = name;
+    info->file = file;
+    info->ast = Parse(file, program_.sources, diagnostics_, parse_options);
+    loading_.pop_back();
+    program_.modules.push_back(std::move(info));
+    const int index = static_cast<int>(program_.modules.size()) - 1;
+    loaded_[name] = index;
+    return index;
+  }
+
+  const std::map<std::string, int>& loaded() const { return loaded_; }
+
+ private:
+  // The parser's hook: load `module` if needed and return the class names it exports.
+  std::optional<std::vector<std::string>> ImportClasses(const std::string& module,
+                                                        const std::string& directory,
+                                                        SourceSpan where) {
+    for (const std::string& open : loading_) {
+      if (open == module) {
+        ReportCycle(module, where);
+        return std::nullopt;
+      }
+    }
+    auto it = loaded_.find(module);
+    int index = -1;
+    if (it != loaded_.end()) {
+      index = it->second;
+    } else {
+      std::optional<std::string> path = FindModule(module, directory);
+      if (!path) {
+        ReportMissing(module, directory, where);
+        return std::nullopt;
+      }
+      index = LoadModule(module, *path, *fs_.ReadFile(*path));
+    }
+    return ExportedClassNames(index);
+  }
+
+  // Class names a module makes visible: its own classes and those of the modules it imports.
+  std::vector<std::string> ExportedClassNames(int index) const {
+    std::vector<std::string> names;
+    for (const StmtPtr& stmt : program_.modules[index]->ast.body) {
+      if (const auto* cls = std::get_if<ClassDef>(&stmt->node)) {
+        names.push_back(cls->name.name);
+      } else if (const auto* import = std::get_if<FromImportStmt>(&stmt->node)) {
+        auto it = loaded_.find(import->module.name);
+        if (it == loaded_.end()) continue;
+        std::vector<std::string> inner = ExportedClassNames(it->second);
+        names.insert(names.end(), inner.begin(), inner.end());
+      }
+    }
+    return names;
+  }
+
+  std::optional<std::string> FindModule(const std::string& module, const std::string& directory) {
+    std::vector<std::string> directories{directory.empty() ? "." : directory};
+    directories.insert(directories.end(), options_.search_path.begin(), options_.search_path.end());
+    for (const std::string& dir : directories) {
+      const std::string candidate = (std::filesystem::path(dir) / (module + ".prs")).string();
+      if (fs_.ReadFile(candidate)) return candidate;
+    }
+    return std::nullopt;
+  }
+
+  void ReportCycle(const std::string& module, SourceSpan where) {
+    std::string chain;
+    for (const std::string& open : loading_) chain += open + " -> ";
+    chain += module;
+    Diagnostic d;
+    d.id = "import-cycle";
+    d.span = where;
+    d.message = "import cycle: " + chain;
+    d.notes.push_back({{}, false, "a module cannot import itself, directly or through others; "
+                                  "move the shared definitions into a third module"});
+    diagnostics_.Report(std::move(d));
+  }
+
+  void ReportMissing(const std::string& module, const std::string& directory, SourceSpan where) {
+    std::string searched = directory.empty() ? "." : directory;
+    for (const std::string& dir : options_.search_path) searched += ", " + dir;
+    Diagnostic d;
+    d.id = "module-not-found";
+    d.span = where;
+    d.message = "cannot find module '" + module + "' (looked for " + module + ".prs in " +
+                searched + ")";
+    d.notes.push_back({{}, false, "put " + module + ".prs next to this file, or add its "
+                                  "directory with -I DIR or the PRS_PATH environment variable"});
+    diagnostics_.Report(std::move(d));
+  }
+
+  CompiledProgram& program_;
+  const CompileOptions& options_;
+  DiagnosticEngine& diagnostics_;
+  const FileSystem& fs_;
+  std::vector<std::string> loading_;
+  std::map<std::string, int> loaded_;
+};
+
+}  // namespace
+
+const FileSystem& RealFileSystem() {
+  static const DiskFileSystem kDisk;
+  return kDisk;
+}
+
+std::unique_ptr<CompiledProgram> CompileText(const std::string& path, std::string text,
+                                             const CompileOptions& options,
+                                             DiagnosticEngine& diagnostics) {
+  auto program = std::make_unique<CompiledProgram>();
+  ModuleLoader loader(*program, options, diagnostics);
+  program->main_module = loader.LoadModule(path, path, std::move(text));
+  for (const auto& [name, value] : options.param_overrides) program->param_overrides[name] = value;
+  if (!diagnostics.has_errors()) ResolveProgram(*program, loader.loaded(), diagnostics);
+  return program;
+}
+
+std::unique_ptr<CompiledProgram> CompileFile(const std::string& path, const CompileOptions& options,
+                                             DiagnosticEngine& diagnostics) {
+  const FileSystem& fs = options.file_system ? *options.file_system : RealFileSystem();
+  std::optional<std::string> text = fs.ReadFile(path);
+  if (!text) {
+    Diagnostic d;
+    d.id = "file-not-found";
+    d.has_span = false;
+    d.message = "cannot read '" + path + "': no such file, or it is not readable";
+    diagnostics.Report(std::move(d));
+    return std::make_unique<CompiledProgram>();
+  }
+  return CompileText(path, std::move(*text), options, diagnostics);
+}
+
+}  // namespace prs::lang

@@ -1,0 +1,220 @@
+// The diagnostic engine, the Clang-style renderer, "did you mean" suggestions and the
+// catalogue of diagnostic ids (documented in docs/diagnostics.md).
+#include "lang/diagnostics.h"
+
+#include <fmt/format.h>
+
+#include <algorithm>
+
+namespace prs::lang {
+namespace {
+
+constexpr int kTabStop = 8;
+constexpr const char* kReset = "\033[0m";
+constexpr const char* kBold = "\033[1m";
+constexpr const char* kGreen = "\033[1;32m";
+
+const char* SeverityName(Severity s) {
+  switch (s) {
+    case Severity::kError: return "error";
+    case Severity::kWarning: return "warning";
+    case Severity::kNote: return "note";
+  }
+  return "error";
+}
+
+const char* SeverityColor(Severity s) {
+  switch (s) {
+    case Severity::kError: return "\033[1;31m";
+    case Severity::kWarning: return "\033[1;35m";
+    case Severity::kNote: return "\033[1;30m";
+  }
+  return "";
+}
+
+bool IsContinuationByte(char c) { return (static_cast<unsigned char>(c) & 0xC0) == 0x80; }
+
+// Expands tabs in `line` and returns it with, for each byte offset (0..size), the display
+// column (0-based) where that byte starts.
+std::string ExpandTabs(std::string_view line, std::vector<uint32_t>* columns) {
+  std::string out;
+  uint32_t col = 0;
+  columns->assign(line.size() + 1, 0);
+  for (size_t i = 0; i < line.size(); ++i) {
+    (*columns)[i] = col;
+    if (line[i] == '\t') {
+      uint32_t next = (col / kTabStop + 1) * kTabStop;
+      out.append(next - col, ' ');
+      col = next;
+    } else {
+      out.push_back(line[i]);
+      if (!IsContinuationByte(line[i])) ++col;
+    }
+  }
+  (*columns)[line.size()] = col;
+  // Continuation bytes share the column of their lead byte.
+  for (size_t i = 1; i < line.size(); ++i) {
+    if (IsContinuationByte(line[i])) (*columns)[i] = (*columns)[i - 1];
+  }
+  return out;
+}
+
+// Appends "file:line:col: severity: message\n" (or "severity: message" with no span).
+void RenderHeader(std::string* out, Severity severity, SourceSpan span, bool has_span,
+                  const std::string& message, const SourceManager& sources, bool color) {
+  if (color) out->append(kBold);
+  if (has_span) {
+    LineColumn lc = sources.CalcLineColumn(span.file, span.begin);
+    out->append(fmt::format("{}:{}:{}: ", sources.path(span.file), lc.line, lc.column));
+  }
+  if (color) out->append(SeverityColor(severity));
+  out->append(fmt::format("{}: ", SeverityName(severity)));
+  if (color) out->append(std::string(kReset) + kBold);
+  out->append(message);
+  if (color) out->append(kReset);
+  out->push_back('\n');
+}
+
+// Appends the source line of span.begin, a caret line and, if any, the fix-it line.
+void RenderSnippet(std::string* out, SourceSpan span, const std::string& fix_it,
+                   const SourceManager& sources, bool color) {
+  LineColumn lc = sources.CalcLineColumn(span.file, span.begin);
+  std::string_view line = sources.LineText(span.file, lc.line);
+  uint32_t line_start = sources.LineStart(span.file, lc.line);
+  std::vector<uint32_t> columns;
+  std::string expanded = ExpandTabs(line, &columns);
+  uint32_t begin = std::min<uint32_t>(span.begin - line_start, line.size());
+  uint32_t end = span.end > span.begin ? span.end - line_start : begin;
+  end = std::min<uint32_t>(end, line.size());  // a span past the line end is cut there
+  uint32_t caret_col = columns[begin];
+  uint32_t width = end > begin ? columns[end] - caret_col : 1;
+  if (width == 0) width = 1;
+
+  std::string gutter = fmt::format("{:>5} | ", lc.line);
+  std::string blank(gutter.size() - 2, ' ');
+  blank += "| ";
+  out->append(gutter).append(expanded).push_back('\n');
+  out->append(blank).append(caret_col, ' ');
+  if (color) out->append(kGreen);
+  out->push_back('^');
+  out->append(width - 1, '~');
+  if (color) out->append(kReset);
+  out->push_back('\n');
+  if (!fix_it.empty()) {
+    out->append(blank).append(caret_col, ' ');
+    if (color) out->append(kGreen);
+    out->append(fix_it);
+    if (color) out->append(kReset);
+    out->push_back('\n');
+  }
+}
+
+}  // namespace
+
+void DiagnosticEngine::Report(Diagnostic diagnostic) {
+  if (diagnostic.severity == Severity::kError) ++error_count_;
+  diagnostics_.push_back(std::move(diagnostic));
+}
+
+void DiagnosticEngine::Error(std::string id, SourceSpan span, std::string message,
+                             std::string fix_it) {
+  Diagnostic d;
+  d.id = std::move(id);
+  d.span = span;
+  d.message = std::move(message);
+  d.fix_it = std::move(fix_it);
+  Report(std::move(d));
+}
+
+std::string RenderDiagnostic(const Diagnostic& d, const SourceManager& sources, bool color) {
+  std::string out;
+  RenderHeader(&out, d.severity, d.span, d.has_span, d.message, sources, color);
+  if (d.has_span) RenderSnippet(&out, d.span, d.fix_it, sources, color);
+  // Notes are one line each, pointing at the related location (see docs/diagnostics.md).
+  for (const DiagnosticNote& note : d.notes) {
+    RenderHeader(&out, Severity::kNote, note.span, note.has_span, note.message, sources, color);
+  }
+  return out;
+}
+
+ScenarioError::ScenarioError(Diagnostic diagnostic) : diagnostic_(std::move(diagnostic)) {}
+
+size_t CalcEditDistance(std::string_view a, std::string_view b) {
+  // Optimal string alignment: insertions, deletions, substitutions, adjacent transpositions.
+  const size_t n = a.size(), m = b.size();
+  std::vector<std::vector<size_t>> d(n + 1, std::vector<size_t>(m + 1));
+  for (size_t i = 0; i <= n; ++i) d[i][0] = i;
+  for (size_t j = 0; j <= m; ++j) d[0][j] = j;
+  for (size_t i = 1; i <= n; ++i) {
+    for (size_t j = 1; j <= m; ++j) {
+      size_t cost = a[i - 1] == b[j - 1] ? 0 : 1;
+      d[i][j] = std::min({d[i - 1][j] + 1, d[i][j - 1] + 1, d[i - 1][j - 1] + cost});
+      if (i > 1 && j > 1 && a[i - 1] == b[j - 2] && a[i - 2] == b[j - 1]) {
+        d[i][j] = std::min(d[i][j], d[i - 2][j - 2] + 1);
+      }
+    }
+  }
+  return d[n][m];
+}
+
+std::string SuggestClosest(std::string_view name, const std::vector<std::string>& candidates) {
+  const size_t limit = std::max<size_t>(1, name.size() / 3);
+  std::string best;
+  size_t best_distance = limit + 1;
+  for (const std::string& c : candidates) {
+    if (c == name) continue;
+    size_t dist = CalcEditDistance(name, c);
+    if (dist < best_distance) {
+      best_distance = dist;
+      best = c;
+    }
+  }
+  return best;
+}
+
+const std::vector<DiagnosticKind>& DiagnosticCatalogue() {
+  static const std::vector<DiagnosticKind> kCatalogue = {
+      // ---- lexer -----------------------------------------------------------
+      {"invalid-character", "lexer", "a character that cannot start any token"},
+      {"invalid-number", "lexer", "a malformed number literal such as `1e` or `1.2.3`"},
+      {"unterminated-string", "lexer", "a string literal with no closing quote"},
+      {"unclosed-bracket", "lexer", "an opening bracket never closed before the end of file"},
+      {"mismatched-bracket", "lexer", "a closing bracket that does not match the open one"},
+      {"unmatched-bracket", "lexer", "a closing bracket with no opening bracket"},
+      {"unexpected-indent", "parser", "a line indented more than the block it belongs to"},
+      {"inconsistent-dedent", "lexer", "an unindent that does not match any outer level"},
+      {"inconsistent-tabs", "lexer", "indentation mixing tabs and spaces ambiguously"},
+      {"bad-line-continuation", "lexer", "a backslash not at the end of a line"},
+      // ---- parser ----------------------------------------------------------
+      {"expected-token", "parser", "a specific token (`:`, `)`, `import`, …) is missing"},
+      {"expected-expression", "parser", "an expression was expected"},
+      {"expected-indented-block", "parser", "a `:` line not followed by an indented block"},
+      {"expected-statement-end", "parser", "extra tokens after a complete statement"},
+      {"unknown-class", "parser", "a name used with specifiers is not a known class"},
+      {"expected-specifier", "parser", "a class name followed by something not a specifier"},
+      {"unknown-specifier", "parser", "a misspelled specifier keyword"},
+      {"missing-of", "parser", "`left`, `ahead`, … without `of`"},
+      {"bad-axis", "parser", "`aligned with X on` an axis other than x, y, z"},
+      {"invalid-assignment-target", "parser", "assigning to something that is not a name"},
+      {"unsupported-feature", "lexer, parser", "a Python feature ProbRobScene does not support"},
+      {"bad-class-body", "parser", "a class body line that is not `name: expr` or `pass`"},
+      {"bad-argument-order", "parser", "a positional argument after a keyword argument"},
+      {"duplicate-parameter", "parser", "a function parameter or keyword given twice"},
+      {"bad-default-order", "parser", "a parameter without a default after one with"},
+      {"outside-function", "parser", "`return` outside a function"},
+      {"outside-loop", "parser", "`break` or `continue` outside a loop"},
+      {"nested-definition", "parser", "`class` inside a block (classes are top-level only)"},
+      {"too-deeply-nested", "parser", "blocks or expressions nested beyond the parser's limit"},
+      // ---- resolver / interpreter (appended by those stages) ------------------
+      // INTERPRETER IDS BELOW: add {"id", "interpreter", "description"} entries here.
+  };
+  return kCatalogue;
+}
+
+bool IsKnownDiagnosticId(std::string_view id) {
+  const auto& catalogue = DiagnosticCatalogue();
+  return std::any_of(catalogue.begin(), catalogue.end(),
+                     [&](const DiagnosticKind& k) { return id == k.id; });
+}
+
+}  // namespace prs::lang

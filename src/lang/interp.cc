@@ -1,0 +1,283 @@
+// The interpreter's statement layer: runs modules (imports once per attempt), binds names,
+// executes control flow within the run limits, and turns requirements into rejections.
+#include <cmath>
+
+#include "lang/interp_internal.h"
+
+namespace prs::lang {
+
+AttemptResult RunAttempt(const CompiledProgram& program, geometry::Rng& rng,
+                         const RunOptions& options) {
+  internal::Interpreter interpreter(program, rng, options);
+  return interpreter.Run();
+}
+
+const char* RejectionKindName(RejectionKind kind) {
+  switch (kind) {
+    case RejectionKind::kCollision: return "collision";
+    case RejectionKind::kRequirement: return "requirement";
+    case RejectionKind::kWorkspace: return "workspace";
+    case RejectionKind::kEmptyRegion: return "empty-region";
+    case RejectionKind::kOutsideRegion: return "outside-region";
+    case RejectionKind::kRelativePosition: return "relative-position";
+    case RejectionKind::kContainment: return "containment";
+  }
+  return "unknown";
+}
+
+namespace internal {
+
+Interpreter::Interpreter(const CompiledProgram& program, geometry::Rng& rng,
+                         const RunOptions& options)
+    : program_(program), rng_(rng), options_(options),
+      module_envs_(program.modules.size()), module_ran_(program.modules.size(), false) {}
+
+AttemptResult Interpreter::Run() {
+  try {
+    RunModule(program_.main_module);
+    CheckWorkspace();
+  } catch (RejectSignal& signal) {
+    return std::move(signal.rejection);
+  }
+  return std::move(scene_);
+}
+
+void Interpreter::RunModule(int module_index) {
+  if (module_ran_[module_index]) return;
+  module_ran_[module_index] = true;
+  const int saved = current_module_;
+  current_module_ = module_index;
+  ExecBody(program_.modules[module_index]->ast.body);
+  current_module_ = saved;
+}
+
+Flow Interpreter::ExecBody(const std::vector<StmtPtr>& body) {
+  for (const StmtPtr& stmt : body) {
+    const Flow flow = Exec(*stmt);
+    if (flow != Flow::kNormal) return flow;
+  }
+  return Flow::kNormal;
+}
+
+Flow Interpreter::Exec(const Stmt& stmt) {
+  if (const auto* node = std::get_if<ExprStmt>(&stmt.node)) {
+    EvalStatementValue(*node->expr);
+  } else if (const auto* node = std::get_if<AssignStmt>(&stmt.node)) {
+    ExecAssign(*node, stmt.span);
+  } else if (const auto* node = std::get_if<AugAssignStmt>(&stmt.node)) {
+    Value current = Lookup(node->target.name, node->target.span);
+    Bind(node->target.name, EvalBinary(node->op, current, Eval(*node->value), stmt.span));
+  } else if (const auto* node = std::get_if<ClassDef>(&stmt.node)) {
+    Bind(node->name.name, program_.class_scopes[current_module_].at(node->name.name));
+  } else if (const auto* node = std::get_if<FunctionDef>(&stmt.node)) {
+    Bind(node->name.name, FunctionRef{node, current_module_});
+  } else if (const auto* node = std::get_if<ReturnStmt>(&stmt.node)) {
+    return_value_ = node->value ? Eval(*node->value) : Value();
+    return Flow::kReturn;
+  } else if (const auto* node = std::get_if<IfStmt>(&stmt.node)) {
+    for (const auto& [condition, body] : node->branches) {
+      if (Truthy(Eval(*condition), condition->span)) return ExecBody(body);
+    }
+    return ExecBody(node->else_body);
+  } else if (const auto* node = std::get_if<ForStmt>(&stmt.node)) {
+    return ExecFor(*node, stmt.span);
+  } else if (const auto* node = std::get_if<WhileStmt>(&stmt.node)) {
+    return ExecWhile(*node, stmt.span);
+  } else if (std::holds_alternative<BreakStmt>(stmt.node)) {
+    return Flow::kBreak;
+  } else if (std::holds_alternative<ContinueStmt>(stmt.node)) {
+    return Flow::kContinue;
+  } else if (const auto* node = std::get_if<RequireStmt>(&stmt.node)) {
+    ExecRequire(*node, stmt.span);
+  } else if (const auto* node = std::get_if<ParamStmt>(&stmt.node)) {
+    ExecParam(*node);
+  } else if (const auto* node = std::get_if<ImportStmt>(&stmt.node)) {
+    Bind(node->module.name, ModuleRef{0});
+  } else if (const auto* node = std::get_if<FromImportStmt>(&stmt.node)) {
+    const int target = program_.import_targets.at(node);
+    RunModule(target);
+    for (const auto& [name, value] : module_envs_[target]) module_envs_[current_module_][name] = value;
+  }
+  return Flow::kNormal;
+}
+
+Flow Interpreter::ExecFor(const ForStmt& node, SourceSpan span) {
+  const Value iterable = Eval(*node.iterable);
+  for (const Value& item : Iterate(iterable, node.iterable->span)) {
+    CountLoopIteration(span);
+    if (node.targets.size() == 1) {
+      Bind(node.targets[0].name, item);
+    } else {
+      std::vector<Value> parts = Iterate(item, node.iterable->span);
+      if (parts.size() != node.targets.size()) {
+        Fail(node.targets.front().span, "bad-unpack",
+             "cannot unpack " + std::to_string(parts.size()) + " values into " +
+                 std::to_string(node.targets.size()) + " names");
+      }
+      for (size_t i = 0; i < parts.size(); ++i) Bind(node.targets[i].name, parts[i]);
+    }
+    const Flow flow = ExecBody(node.body);
+    if (flow == Flow::kBreak) break;
+    if (flow == Flow::kReturn) return flow;
+  }
+  return Flow::kNormal;
+}
+
+Flow Interpreter::ExecWhile(const WhileStmt& node, SourceSpan span) {
+  while (Truthy(Eval(*node.condition), node.condition->span)) {
+    CountLoopIteration(span);
+    const Flow flow = ExecBody(node.body);
+    if (flow == Flow::kBreak) break;
+    if (flow == Flow::kReturn) return flow;
+  }
+  return Flow::kNormal;
+}
+
+void Interpreter::CountLoopIteration(SourceSpan span) {
+  if (++loop_iterations_ > options_.limits.max_loop_iterations) {
+    Fail(span, "limit-exceeded",
+         "loops ran more than " + std::to_string(options_.limits.max_loop_iterations) +
+             " iterations in one scene; is this loop meant to end?");
+  }
+}
+
+void Interpreter::ExecAssign(const AssignStmt& node, SourceSpan span) {
+  Value value = EvalStatementValue(*node.value);
+  if (!node.is_tuple_unpack) {
+    if (const auto* object = std::get_if<ObjectRef>(&value.data)) {
+      auto& name = scene_.objects[object->index].name;
+      if (!name) name = node.targets[0].name;
+    }
+    Bind(node.targets[0].name, std::move(value));
+    return;
+  }
+  std::vector<Value> parts = Iterate(value, node.value->span);
+  if (parts.size() != node.targets.size()) {
+    Fail(span, "bad-unpack",
+         "cannot unpack " + std::to_string(parts.size()) + " values into " +
+             std::to_string(node.targets.size()) + " names");
+  }
+  for (size_t i = 0; i < parts.size(); ++i) Bind(node.targets[i].name, parts[i]);
+}
+
+Value Interpreter::EvalStatementValue(const Expr& expr) {
+  if (const auto* ref = std::get_if<ClassRef>(&expr.node)) {
+    const ClassInfo* cls = program_.class_scopes[current_module_].at(ref->name);
+    return CreateObject(program_.default_plans.at(cls), expr.span);
+  }
+  return Eval(expr);
+}
+
+void Interpreter::ExecRequire(const RequireStmt& node, SourceSpan span) {
+  if (node.probability) {
+    const double p = EvalNumber(*node.probability, "the probability of 'require[p]'");
+    if (!(p >= 0 && p <= 1)) {
+      Fail(node.probability->span, "bad-value",
+           "a requirement's probability must be between 0 and 1, got " + std::to_string(p));
+    }
+    if (DrawUniform(0, 1) >= p) return;  // not enforced in this scene
+  }
+  if (Truthy(Eval(*node.condition), node.condition->span)) return;
+  const LineColumn where = program_.sources.CalcLineColumn(span.file, span.begin);
+  Reject(RejectionKind::kRequirement,
+         "require at " + program_.sources.path(span.file) + ":" + std::to_string(where.line), span);
+}
+
+void Interpreter::ExecParam(const ParamStmt& node) {
+  for (const auto& [name, expr] : node.params) {
+    Value value;
+    auto it = program_.param_overrides.find(name.name);
+    if (it != program_.param_overrides.end()) {
+      char* end = nullptr;
+      const double number = std::strtod(it->second.c_str(), &end);
+      value = (!it->second.empty() && *end == '\0') ? Value(number) : MakeString(it->second);
+    } else {
+      value = Eval(*expr);
+    }
+    Bind(name.name, value);
+    bool replaced = false;
+    for (auto& [existing, v] : scene_.params) {
+      if (existing == name.name) {
+        v = value;
+        replaced = true;
+      }
+    }
+    if (!replaced) scene_.params.emplace_back(name.name, value);
+  }
+}
+
+void Interpreter::Bind(const std::string& name, Value value) {
+  Env& env = locals_ ? *locals_ : module_envs_[current_module_];
+  env[name] = std::move(value);
+}
+
+Value Interpreter::Lookup(const std::string& name, SourceSpan span) {
+  if (name == "self" && self_index_ >= 0) return ObjectRef{self_index_};
+  if (locals_) {
+    auto it = locals_->find(name);
+    if (it != locals_->end()) return it->second;
+  }
+  const Env& globals = module_envs_[current_module_];
+  auto it = globals.find(name);
+  if (it != globals.end()) return it->second;
+  if (const BuiltinInfo* info = FindGlobalBuiltin(name)) return BuiltinRef{info->id};
+  const auto& classes = program_.class_scopes[current_module_];
+  if (auto cls = classes.find(name); cls != classes.end()) return cls->second;
+  Fail(span, "unbound-name",
+       "'" + name + "' is used before it is given a value; assign it earlier in the program");
+}
+
+std::vector<Value> Interpreter::Iterate(const Value& v, SourceSpan span) {
+  if (const auto* list = std::get_if<std::shared_ptr<ListData>>(&v.data)) return (*list)->elements;
+  if (const auto* tuple = std::get_if<std::shared_ptr<TupleData>>(&v.data)) {
+    return (*tuple)->elements;
+  }
+  if (const auto* dict = std::get_if<std::shared_ptr<DictData>>(&v.data)) {
+    std::vector<Value> keys;
+    for (const auto& [key, value] : (*dict)->entries) keys.push_back(key);
+    return keys;
+  }
+  if (const auto* s = std::get_if<StringPtr>(&v.data)) {
+    std::vector<Value> chars;
+    for (char c : **s) chars.push_back(MakeString(std::string(1, c)));
+    return chars;
+  }
+  if (const auto* vec = std::get_if<Eigen::Vector3d>(&v.data)) {
+    return {Value((*vec).x()), Value((*vec).y()), Value((*vec).z())};
+  }
+  Fail(span, "type-error", "cannot iterate over a " + TypeName(v) + "; expected a list, a tuple "
+                           "or range(...)");
+}
+
+void Interpreter::Fail(SourceSpan span, const std::string& id, const std::string& message,
+                       std::vector<DiagnosticNote> notes) const {
+  Diagnostic d;
+  d.id = id;
+  d.span = span;
+  d.message = message;
+  d.notes = std::move(notes);
+  throw ScenarioError(std::move(d));
+}
+
+[[noreturn]] void Interpreter::Reject(RejectionKind kind, std::string culprit, SourceSpan span,
+                         std::string detail) {
+  throw RejectSignal{Rejection{kind, std::move(culprit), span, std::move(detail)}};
+}
+
+double Interpreter::DrawUniform(double lo, double hi) {
+  ++draws_;
+  return rng_.Uniform(lo, hi);
+}
+
+double Interpreter::DrawNormal(double mean, double std) {
+  ++draws_;
+  return mean + std * rng_.Normal();
+}
+
+int64_t Interpreter::DrawInt(int64_t lo, int64_t hi) {
+  ++draws_;
+  return rng_.UniformInt(lo, hi);
+}
+
+}  // namespace internal
+}  // namespace prs::lang

@@ -1,0 +1,154 @@
+// The interpreter's internal interface: one Interpreter runs one scene attempt over a
+// CompiledProgram. Split across files by job: interp.cc (statements, names, control flow),
+// eval.cc (expressions and operators), call.cc (built-in and user calls), objects.cc (object
+// creation plans and scene checks), placement.cc (position regions and sampling).
+#pragma once
+
+#include <string>
+#include <unordered_map>
+#include <vector>
+
+#include "geometry/geometry.h"
+#include "lang/builtins.h"
+#include "lang/lang.h"
+
+namespace prs::lang::internal {
+
+enum class Flow { kNormal, kBreak, kContinue, kReturn };
+
+using Env = std::unordered_map<std::string, Value>;
+
+/// Thrown to abandon the attempt: not an error, the sampler counts it and restarts.
+struct RejectSignal {
+  Rejection rejection;
+};
+
+/// A position constraint from one specifier: a point, or a region the position must lie in.
+struct PositionConstraint {
+  const Specifier* specifier;
+  bool is_point = false;
+  Eigen::Vector3d p_W = Eigen::Vector3d::Zero();
+  geometry::ConvexRegion region = geometry::ConvexRegion::All();
+  std::string description;  // e.g. "completely on tr_1 (top 0.24 m x 0.45 m)"
+};
+
+class Interpreter {
+ public:
+  Interpreter(const CompiledProgram& program, geometry::Rng& rng, const RunOptions& options);
+  AttemptResult Run();
+
+  // --- expressions (eval.cc) ---
+  Value Eval(const Expr& expr);
+  double ToNumber(const Value& v, SourceSpan span, const std::string& what);
+  Eigen::Vector3d ToVector(const Value& v, SourceSpan span, const std::string& what);
+  Eigen::Quaterniond ToOrientation(const Value& v, SourceSpan span, const std::string& what);
+  bool Truthy(const Value& v, SourceSpan span);
+  double EvalNumber(const Expr& e, const std::string& what) { return ToNumber(Eval(e), e.span, what); }
+  Eigen::Vector3d EvalVector(const Expr& e, const std::string& what) {
+    return ToVector(Eval(e), e.span, what);
+  }
+
+  /// Throws a located ScenarioError.
+  [[noreturn]] void Fail(SourceSpan span, const std::string& id, const std::string& message,
+                         std::vector<DiagnosticNote> notes = {}) const;
+
+  // --- randomness: every draw goes through here, so a scene with no draws is deterministic ---
+  double DrawUniform(double lo, double hi);
+  double DrawNormal(double mean, double std);
+  int64_t DrawInt(int64_t lo, int64_t hi);
+  geometry::Rng& rng() { draws_++; return rng_; }
+
+ private:
+  friend class ExprEvaluator;
+
+  // --- statements (interp.cc) ---
+  Flow ExecBody(const std::vector<StmtPtr>& body);
+  Flow Exec(const Stmt& stmt);
+  Flow ExecFor(const ForStmt& node, SourceSpan span);
+  Flow ExecWhile(const WhileStmt& node, SourceSpan span);
+  void ExecAssign(const AssignStmt& node, SourceSpan span);
+  void ExecRequire(const RequireStmt& node, SourceSpan span);
+  void ExecParam(const ParamStmt& node);
+  void RunModule(int module_index);
+  void Bind(const std::string& name, Value value);
+  Value Lookup(const std::string& name, SourceSpan span);
+  Value EvalStatementValue(const Expr& expr);  // a bare class name here creates an object
+  void CountLoopIteration(SourceSpan span);
+  std::vector<Value> Iterate(const Value& v, SourceSpan span);
+
+  // --- expressions (eval.cc) ---
+  Value EvalBinary(BinaryOp op, const Value& a, const Value& b, SourceSpan span);
+  Value EvalCompare(BinaryOp op, const Value& a, const Value& b, SourceSpan span);
+  Value EvalAttribute(const Value& object, const Identifier& attribute, SourceSpan span);
+  Value EvalIndex(const Value& object, const Value& index, SourceSpan span);
+  Value EvalSidePoint(const SidePointExpr& node, SourceSpan span);
+  Value EvalRelativeTo(const Value& value, const Value& base, SourceSpan span);
+  Value EvalOffsetBy(const Value& value, const Value& offset, SourceSpan span);
+  bool ValuesEqual(const Value& a, const Value& b);
+  OrientedPoint ToOrientedPoint(const Value& v, SourceSpan span, const std::string& what);
+
+  // --- calls (call.cc) ---
+  Value EvalCall(const CallExpr& call, SourceSpan span);
+  Value CallBuiltin(Builtin id, const std::vector<Value>& args,
+                    const std::vector<SourceSpan>& spans, SourceSpan span);
+  Value CallDistribution(Builtin id, const std::vector<Value>& args,
+                         const std::vector<SourceSpan>& spans, SourceSpan span);
+  Value CallRegion(Builtin id, const std::vector<Value>& args,
+                   const std::vector<SourceSpan>& spans, SourceSpan span);
+  Value CallMath(Builtin id, const std::vector<Value>& args, const std::vector<SourceSpan>& spans,
+                 SourceSpan span);
+  Value CallFunction(const FunctionRef& fn, const CallExpr& call, std::vector<Value> args,
+                     SourceSpan span);
+  Value CallMethod(const BoundMethod& method, const std::vector<Value>& args,
+                   const std::vector<SourceSpan>& spans, SourceSpan span);
+  Value Draw(const Distribution& distribution, SourceSpan span);
+  Value Resample(const Value& v, SourceSpan span);
+
+  // --- objects (objects.cc) ---
+  Value CreateObject(const ObjectPlan& plan, SourceSpan span);
+  void RunPlanStep(const PlanStep& step, int index, SourceSpan span);
+  Value EvalDefault(const PropertyDefault& d, int index);
+  void SetOrientation(const PlanStep& step, int index);
+  void SetProperty(int index, const std::string& name, Value value);
+  Value GetProperty(int index, const std::string& name, SourceSpan span);
+  void FinishObject(int index, SourceSpan span);
+  void CheckCollisions(int index);
+  void CheckWorkspace();
+  geometry::OrientedBox BoxOf(int index) const;
+  const geometry::ConvexRegion* Workspace() const;
+
+  // --- placement (placement.cc) ---
+  Eigen::Vector3d PlacePosition(const ObjectPlan& plan, int index, SourceSpan span);
+  PositionConstraint EvalPositionConstraint(const Specifier& s, int index);
+  PositionConstraint EvalOnConstraint(const Specifier& s, int index, bool completely);
+  PositionConstraint EvalSideConstraint(const Specifier& s, int index);
+  Eigen::Vector3d SampleRegion(const std::vector<PositionConstraint>& constraints,
+                               const geometry::ConvexRegion& region, int index, SourceSpan span);
+  Eigen::Vector3d SampleNaive(const std::vector<PositionConstraint>& constraints, int index,
+                              SourceSpan span);
+  [[noreturn]] void ExplainEmptyRegion(const std::vector<PositionConstraint>& constraints,
+                                       const geometry::ConvexRegion* workspace, int index,
+                                       SourceSpan span);
+  [[noreturn]] void Reject(RejectionKind kind, std::string culprit, SourceSpan span,
+                           std::string detail = "");
+
+  const CompiledProgram& program_;
+  geometry::Rng& rng_;
+  RunOptions options_;
+  Scene scene_;
+  std::vector<bool> completed_;      // per object: fully placed (collision checks use these)
+  std::vector<Env> module_envs_;
+  std::vector<bool> module_ran_;
+  int current_module_ = 0;
+  Env* locals_ = nullptr;            // the current function's frame, if any
+  int self_index_ = -1;              // the object whose defaults are being evaluated
+  int call_depth_ = 0;
+  int64_t loop_iterations_ = 0;
+  int64_t draws_ = 0;
+  Value return_value_;
+};
+
+/// The user-facing name of a specifier for messages, e.g. "'completely on tr_1'".
+std::string DescribeSpecifier(const Specifier& s, const SourceManager& sources);
+
+}  // namespace prs::lang::internal

@@ -1,0 +1,212 @@
+// Object creation: runs a creation plan (defaults, `with`, orientation, position in dependency
+// order), then the scene constraints that concern the new object: collisions with the objects
+// already placed, and (at the end of the attempt) workspace containment.
+#include <cmath>
+
+#include "lang/interp_internal.h"
+
+namespace prs::lang::internal {
+
+using Eigen::Vector3d;
+
+Value Interpreter::CreateObject(const ObjectPlan& plan, SourceSpan span) {
+  if (static_cast<int>(scene_.objects.size()) >= options_.limits.max_objects) {
+    Fail(span, "limit-exceeded", "more than " + std::to_string(options_.limits.max_objects) +
+                                     " objects in one scene; is a loop creating too many?");
+  }
+  const int index = static_cast<int>(scene_.objects.size());
+  SceneObject object;
+  object.cls = plan.cls;
+  object.span = span;
+  scene_.objects.push_back(std::move(object));
+  completed_.push_back(false);
+  for (const PlanStep& step : plan.steps) {
+    if (step.kind == PlanStepKind::kPosition) {
+      const Vector3d p = PlacePosition(plan, index, span);
+      scene_.objects[index].p_WO = p;
+      SetProperty(index, "position", Value(p));
+    } else {
+      RunPlanStep(step, index, span);
+    }
+  }
+  FinishObject(index, span);
+  return ObjectRef{index};
+}
+
+void Interpreter::RunPlanStep(const PlanStep& step, int index, SourceSpan span) {
+  switch (step.kind) {
+    case PlanStepKind::kDefault:
+      SetProperty(index, step.property, EvalDefault(*step.default_value, index));
+      break;
+    case PlanStepKind::kWith:
+      SetProperty(index, step.property, Eval(*step.specifier->target));
+      break;
+    case PlanStepKind::kOrientation:
+      SetOrientation(step, index);
+      break;
+    case PlanStepKind::kPosition:
+      break;  // handled by CreateObject
+  }
+  (void)span;
+}
+
+Value Interpreter::EvalDefault(const PropertyDefault& d, int index) {
+  if (!d.expr) {
+    if (d.name == "position") return Value(Vector3d(Vector3d::Zero()));
+    if (d.name == "orientation") return Orientation{Eigen::Quaterniond::Identity()};
+    if (d.name == "width" || d.name == "length" || d.name == "height") return 1.0;
+    if (d.name == "allowCollisions") return false;
+    return 0.0;  // yaw, pitch, roll
+  }
+  const int saved_module = current_module_, saved_self = self_index_;
+  Env* saved_locals = locals_;
+  current_module_ = d.module_index;
+  self_index_ = index;
+  locals_ = nullptr;
+  Value value = Eval(*d.expr);
+  current_module_ = saved_module;
+  self_index_ = saved_self;
+  locals_ = saved_locals;
+  return value;
+}
+
+// Orientation = base (facing / facing toward / with orientation / default) · yaw·pitch·roll.
+void Interpreter::SetOrientation(const PlanStep& step, int index) {
+  Eigen::Quaterniond R_base = Eigen::Quaterniond::Identity();
+  const Specifier* s = step.specifier;
+  if (s && s->kind == SpecifierKind::kFacing) {
+    const Value target = Eval(*s->target);
+    if (target.Is<Vector3d>()) {
+      const Vector3d direction = target.As<Vector3d>();
+      if (!(direction.norm() > 1e-12)) Fail(s->target->span, "bad-value", "cannot face a zero vector");
+      R_base = Eigen::Quaterniond(geometry::CalcRotationFacing(direction));
+    } else {
+      R_base = ToOrientation(target, s->target->span, "the argument of 'facing'");
+    }
+  } else if (s && s->kind == SpecifierKind::kFacingToward) {
+    const Vector3d p_target = EvalVector(*s->target, "the argument of 'facing toward'");
+    R_base = Eigen::Quaterniond(
+        geometry::CalcRotationFacingToward(scene_.objects[index].p_WO, p_target));
+  } else if (s) {
+    R_base = ToOrientation(Eval(*s->target), s->target->span, "the orientation");
+  } else if (step.default_value && step.default_value->expr) {
+    R_base = ToOrientation(EvalDefault(*step.default_value, index), step.default_value->span,
+                           "the default orientation");
+  }
+  auto angle = [&](const char* name) {
+    return ToNumber(GetProperty(index, name, {}), scene_.objects[index].span, name);
+  };
+  const Eigen::Matrix3d R_local =
+      geometry::CalcRotationFromYawPitchRoll(angle("yaw"), angle("pitch"), angle("roll"));
+  const Eigen::Quaterniond R_WO(R_base.toRotationMatrix() * R_local);
+  scene_.objects[index].R_WO = R_WO.normalized();
+  SetProperty(index, "orientation", Orientation{scene_.objects[index].R_WO});
+}
+
+void Interpreter::SetProperty(int index, const std::string& name, Value value) {
+  SceneObject& o = scene_.objects[index];
+  const bool numeric = name == "width" || name == "length" || name == "height" || name == "yaw" ||
+                       name == "pitch" || name == "roll";
+  if (numeric) {
+    const double x = ToNumber(value, o.span, "'" + name + "'");
+    if (!std::isfinite(x) || (name[0] != 'y' && name[0] != 'p' && name[0] != 'r' && x < 0)) {
+      Fail(o.span, "bad-value", "the " + name + " of this " + o.cls->name + " is " + Repr(x) +
+                                    "; sizes must be finite and >= 0");
+    }
+    value = Value(x);
+    if (name == "width") o.dimensions.x() = x;
+    if (name == "length") o.dimensions.y() = x;
+    if (name == "height") o.dimensions.z() = x;
+  }
+  for (auto& [existing, v] : o.properties) {
+    if (existing == name) {
+      v = std::move(value);
+      return;
+    }
+  }
+  o.properties.emplace_back(name, std::move(value));
+}
+
+Value Interpreter::GetProperty(int index, const std::string& name, SourceSpan span) {
+  const SceneObject& o = scene_.objects[index];
+  for (const auto& [existing, v] : o.properties) {
+    if (existing == name) return v;
+  }
+  std::vector<std::string> names{"x", "y", "z"};
+  for (const auto& [existing, v] : o.properties) names.push_back(existing);
+  const std::string suggestion = SuggestClosest(name, names);
+  Fail(span, "unknown-property",
+       "this " + o.cls->name + " has no property '" + name + "'" +
+           (suggestion.empty() ? "" : "; did you mean '" + suggestion + "'?"));
+}
+
+void Interpreter::FinishObject(int index, SourceSpan span) {
+  SceneObject& o = scene_.objects[index];
+  if (const Value* allow = o.FindProperty("allowCollisions")) {
+    o.allow_collisions = Truthy(*allow, span);
+  }
+  if (!o.cls->has_box) o.dimensions.setZero();
+  completed_[index] = true;
+  CheckCollisions(index);
+}
+
+geometry::OrientedBox Interpreter::BoxOf(int index) const {
+  const SceneObject& o = scene_.objects[index];
+  return {o.p_WO, o.R_WO.toRotationMatrix(), o.dimensions / 2};
+}
+
+void Interpreter::CheckCollisions(int index) {
+  const SceneObject& o = scene_.objects[index];
+  if (!o.cls->has_box || o.allow_collisions) return;
+  const geometry::OrientedBox box = BoxOf(index);
+  for (int other = 0; other < static_cast<int>(scene_.objects.size()); ++other) {
+    const SceneObject& p = scene_.objects[other];
+    if (other == index || !completed_[other] || !p.cls->has_box || p.allow_collisions) continue;
+    if (geometry::DoBoxesOverlap(box, BoxOf(other))) {
+      const int first = std::min(index, other), second = std::max(index, other);
+      Reject(RejectionKind::kCollision,
+             scene_.objects[first].DisplayName(first) + " and " +
+                 scene_.objects[second].DisplayName(second),
+             scene_.objects[index].span);
+    }
+  }
+}
+
+const geometry::ConvexRegion* Interpreter::Workspace() const {
+  const Env& env = module_envs_[current_module_];
+  auto it = env.find("workspace");
+  if (it == env.end() || !it->second.Is<RegionPtr>()) return nullptr;
+  return it->second.As<RegionPtr>().get();
+}
+
+// Every object's whole box inside the workspace (spec §6), checked once the program has run.
+void Interpreter::CheckWorkspace() {
+  current_module_ = program_.main_module;
+  const geometry::ConvexRegion* workspace = Workspace();
+  if (!workspace) return;
+  const RejectionKind kind = options_.mode == SamplingMode::kNaive ? RejectionKind::kContainment
+                                                                   : RejectionKind::kWorkspace;
+  for (int i = 0; i < static_cast<int>(scene_.objects.size()); ++i) {
+    const SceneObject& o = scene_.objects[i];
+    const bool inside = o.cls->has_box ? workspace->ContainsBox(BoxOf(i), 1e-9)
+                                       : workspace->Contains(o.p_WO);
+    if (!inside) Reject(kind, o.DisplayName(i) + " outside the workspace", o.span);
+  }
+}
+
+}  // namespace prs::lang::internal
+
+namespace prs::lang {
+
+const Value* SceneObject::FindProperty(const std::string& property) const {
+  for (const auto& [name, value] : properties) {
+    if (name == property) return &value;
+  }
+  return nullptr;
+}
+
+std::string SceneObject::DisplayName(int index) const {
+  return name ? *name : cls->name + "#" + std::to_string(index);
+}
+
+}  // namespace prs::lang

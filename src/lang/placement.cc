@@ -1,0 +1,315 @@
+// Placement: turns an object's position specifiers into points and exact convex regions
+// (spec §5), intersects them with the workspace eroded by the object's box, and samples the
+// result uniformly. In naive mode, positions come from the workspace and every specifier is
+// checked afterwards instead (the paper's baseline).
+#include <cmath>
+
+#include "lang/interp_internal.h"
+
+namespace prs::lang::internal {
+
+using Eigen::Matrix3d;
+using Eigen::Vector3d;
+using geometry::ConvexRegion;
+
+namespace {
+
+std::string Format(double x) {
+  char buffer[32];
+  std::snprintf(buffer, sizeof buffer, "%.3g", x);
+  return buffer;
+}
+
+bool IsRelativeSpecifier(SpecifierKind kind) {
+  return kind == SpecifierKind::kLeftOf || kind == SpecifierKind::kRightOf ||
+         kind == SpecifierKind::kAheadOf || kind == SpecifierKind::kBehind ||
+         kind == SpecifierKind::kAbove || kind == SpecifierKind::kBelow ||
+         kind == SpecifierKind::kAlignedWith;
+}
+
+// The affine hull of a lower-dimensional region, as a region (naive mode's sampling domain).
+ConvexRegion HullRegion(const ConvexRegion& region) {
+  const geometry::AffineHull& hull = region.hull();
+  switch (hull.basis.cols()) {
+    case 0: return ConvexRegion::MakePoint(hull.p_origin);
+    case 2: return ConvexRegion::MakePlane(hull.p_origin, region.CalcPlaneNormal());
+    case 1: {
+      const Vector3d direction = hull.basis.col(0);
+      const Vector3d helper = std::abs(direction.x()) < 0.9 ? Vector3d::UnitX() : Vector3d::UnitY();
+      const Vector3d n1 = direction.cross(helper).normalized(), n2 = direction.cross(n1);
+      return geometry::Intersect(ConvexRegion::MakePlane(hull.p_origin, n1),
+                                 ConvexRegion::MakePlane(hull.p_origin, n2));
+    }
+    default: return ConvexRegion::All();
+  }
+}
+
+// The region moved by t (exact: every constraint is shifted).
+ConvexRegion TranslateRegion(const ConvexRegion& region, const Vector3d& t) {
+  std::vector<geometry::HalfSpace> half_spaces = region.half_spaces();
+  for (geometry::HalfSpace& h : half_spaces) h.offset += h.normal.dot(t);
+  ConvexRegion result = ConvexRegion::FromHalfSpaces(half_spaces);
+  for (const geometry::HalfSpace& h : region.equalities()) {
+    const Vector3d p_on_plane = h.normal * h.offset + t;
+    result = geometry::Intersect(result, ConvexRegion::MakePlane(p_on_plane, h.normal));
+  }
+  for (const geometry::Ball& b : region.balls()) {
+    result = geometry::Intersect(result, ConvexRegion::MakeSphere(b.p_center + t, b.radius));
+  }
+  return result;
+}
+
+}  // namespace
+
+std::string DescribeSpecifier(const Specifier& s, const SourceManager& sources) {
+  const std::string_view text = sources.text(s.span.file).substr(s.span.begin, s.span.end - s.span.begin);
+  return "'" + std::string(text) + "'";
+}
+
+Vector3d Interpreter::PlacePosition(const ObjectPlan& plan, int index, SourceSpan span) {
+  if (plan.position_specifiers.empty()) {
+    const PropertyDefault* d = plan.cls->FindDefault("position");
+    return ToVector(EvalDefault(*d, index), d->expr ? d->expr->span : span, "the default position");
+  }
+  std::vector<PositionConstraint> constraints;
+  for (const Specifier* s : plan.position_specifiers) {
+    constraints.push_back(EvalPositionConstraint(*s, index));
+  }
+  if (options_.mode == SamplingMode::kNaive) return SampleNaive(constraints, index, span);
+  ConvexRegion region = ConvexRegion::All();
+  const ConvexRegion* workspace = plan.fold_workspace ? Workspace() : nullptr;
+  if (workspace) {
+    const geometry::OrientedBox box = BoxOf(index);
+    region = geometry::ErodeByBox(*workspace, box.R_WB, box.half_extents);
+  }
+  for (const PositionConstraint& c : constraints) {
+    if (!c.is_point) region = geometry::Intersect(region, c.region);
+  }
+  for (const PositionConstraint& c : constraints) {
+    if (!c.is_point) continue;
+    if (!region.Contains(c.p_W, 1e-9)) {
+      if (draws_ == 0) ExplainEmptyRegion(constraints, workspace, index, span);
+      Reject(RejectionKind::kOutsideRegion,
+             scene_.objects[index].DisplayName(index) + " " + DescribeSpecifier(*c.specifier, program_.sources),
+             c.specifier->span);
+    }
+    return c.p_W;
+  }
+  return SampleRegion(constraints, region, index, span);
+}
+
+Vector3d Interpreter::SampleRegion(const std::vector<PositionConstraint>& constraints,
+                                   const ConvexRegion& region, int index, SourceSpan span) {
+  if (region.IsEmpty()) {
+    if (draws_ == 0) ExplainEmptyRegion(constraints, Workspace(), index, span);
+    Reject(RejectionKind::kEmptyRegion,
+           "no room for " + scene_.objects[index].DisplayName(index), span);
+  }
+  if (!region.IsBounded()) {
+    std::vector<DiagnosticNote> notes;
+    for (const PositionConstraint& c : constraints) {
+      notes.push_back({c.specifier->span, true, "this specifier's region is " + c.region.Describe()});
+    }
+    notes.push_back({{}, false, "add a bounded specifier such as 'on', 'completely on' or 'in', "
+                                "or bind 'workspace' to a bounded region"});
+    Fail(span, "unbounded-region",
+         "the position of this " + scene_.objects[index].cls->name +
+             " is unbounded: its specifiers leave it free to be arbitrarily far away",
+         std::move(notes));
+  }
+  try {
+    return geometry::RegionSampler(region).Sample(rng());
+  } catch (const std::domain_error&) {
+    Reject(RejectionKind::kEmptyRegion, "no room for " + scene_.objects[index].DisplayName(index), span);
+  }
+}
+
+PositionConstraint Interpreter::EvalPositionConstraint(const Specifier& s, int index) {
+  PositionConstraint c;
+  c.specifier = &s;
+  switch (s.kind) {
+    case SpecifierKind::kWith:
+    case SpecifierKind::kAt:
+      c.is_point = true;
+      c.p_W = EvalVector(*s.target, "the position");
+      return c;
+    case SpecifierKind::kIn: {
+      const Value target = Eval(*s.target);
+      if (!target.Is<RegionPtr>()) {
+        Fail(s.target->span, "type-error", "'in' needs a region, but this is a " + TypeName(target));
+      }
+      c.region = *target.As<RegionPtr>();
+      return c;
+    }
+    case SpecifierKind::kOn:
+    case SpecifierKind::kCompletelyOn:
+      return EvalOnConstraint(s, index, s.kind == SpecifierKind::kCompletelyOn);
+    case SpecifierKind::kAlignedWith: {
+      const Vector3d p = EvalVector(*s.target, "the argument of 'aligned with'");
+      const std::string& axis = s.axis ? s.axis->name : "";
+      if (axis != "x" && axis != "y" && axis != "z") {
+        Fail(s.axis ? s.axis->span : s.span, "bad-specifier",
+             "'aligned with' needs an axis: x, y or z");
+      }
+      c.region = ConvexRegion::MakePlane(p, Vector3d::Unit(axis[0] - 'x'));
+      return c;
+    }
+    case SpecifierKind::kBeyond: {
+      const Vector3d p_x = EvalVector(*s.target, "the argument of 'beyond'");
+      const Vector3d p_y = EvalVector(*s.from, "the argument of 'from'");
+      const Vector3d direction = p_x - p_y;
+      if (direction.norm() < 1e-12) {
+        Fail(s.span, "bad-value", "'beyond X ... from Y' needs X and Y at different places");
+      }
+      const Value d = Eval(*s.distance);
+      c.is_point = true;
+      if (d.Is<Vector3d>()) {
+        c.p_W = p_x + geometry::CalcRotationFacing(direction) * d.As<Vector3d>();
+      } else {
+        c.p_W = p_x + ToNumber(d, s.distance->span, "the distance") * direction.normalized();
+      }
+      return c;
+    }
+    default:
+      return EvalSideConstraint(s, index);
+  }
+}
+
+// `on X` / `completely on X`: X's top face (or a planar region) lifted by half the height.
+PositionConstraint Interpreter::EvalOnConstraint(const Specifier& s, int index, bool completely) {
+  PositionConstraint c;
+  c.specifier = &s;
+  const SceneObject& self = scene_.objects[index];
+  const double half_height = self.dimensions.z() / 2;
+  const Value target = Eval(*s.target);
+  const std::string what = "the argument of '" + std::string(SpecifierName(s.kind)) + "'";
+  if (const auto* ref = std::get_if<ObjectRef>(&target.data)) {
+    const SceneObject& x = scene_.objects[ref->index];
+    const Matrix3d R_WX = x.R_WO.toRotationMatrix();
+    const Vector3d up = R_WX.col(2);
+    const Vector3d p_top = x.p_WO + up * (x.dimensions.z() / 2 + half_height);
+    c.region = ConvexRegion::MakeRect3D(p_top, R_WX, x.dimensions.x(), x.dimensions.y());
+  } else if (const auto* region = std::get_if<RegionPtr>(&target.data)) {
+    if ((*region)->dimension() != 2) {
+      Fail(s.target->span, "type-error",
+           "'" + std::string(SpecifierName(s.kind)) + "' needs an object, a vector or a planar "
+           "region (Rect3D, ConvexPolygon3D), but this region is " + (*region)->Describe());
+    }
+    c.region = TranslateRegion(**region, (*region)->CalcPlaneNormal() * half_height);
+  } else {
+    c.is_point = true;
+    const Vector3d up = target.Is<OrientedPoint>()
+                            ? Vector3d(target.As<OrientedPoint>().R_WF.toRotationMatrix().col(2))
+                            : Vector3d::UnitZ();
+    c.p_W = ToVector(target, s.target->span, what) + up * half_height;
+    if (completely) {
+      Fail(s.span, "bad-specifier", "'completely on' needs an object or a planar region to "
+                                    "contain the object's footprint; use 'on' for a point");
+    }
+    return c;
+  }
+  if (completely) {
+    const geometry::OrientedBox box = BoxOf(index);
+    c.region = geometry::ErodeByBox(c.region, box.R_WB, box.half_extents);
+  }
+  return c;
+}
+
+// left of / right of / ahead of / behind / above / below X [by d]: a half-space beyond the
+// plane through X's centre, pushed out by d plus the object's own extent along the normal.
+PositionConstraint Interpreter::EvalSideConstraint(const Specifier& s, int index) {
+  PositionConstraint c;
+  c.specifier = &s;
+  const Value target = Eval(*s.target);
+  const OrientedPoint frame = ToOrientedPoint(target, s.target->span,
+                                              "the argument of '" + std::string(SpecifierName(s.kind)) + "'");
+  const Matrix3d R = frame.R_WF.toRotationMatrix();
+  Vector3d normal = Vector3d::Zero();
+  switch (s.kind) {
+    case SpecifierKind::kLeftOf: normal = -R.col(0); break;
+    case SpecifierKind::kRightOf: normal = R.col(0); break;
+    case SpecifierKind::kAheadOf: normal = R.col(1); break;
+    case SpecifierKind::kBehind: normal = -R.col(1); break;
+    case SpecifierKind::kAbove: normal = R.col(2); break;
+    default: normal = -R.col(2); break;
+  }
+  const double d = s.distance ? EvalNumber(*s.distance, "the distance after 'by'") : 0.0;
+  const geometry::OrientedBox box = BoxOf(index);
+  const double extent = geometry::CalcBoxSupport(box.R_WB, box.half_extents, normal);
+  c.region = ConvexRegion::MakeHalfSpace(frame.p_W + normal * (d + extent), normal);
+  return c;
+}
+
+void Interpreter::ExplainEmptyRegion(const std::vector<PositionConstraint>& constraints,
+                                     const ConvexRegion* workspace, int index, SourceSpan span) {
+  const SceneObject& o = scene_.objects[index];
+  std::vector<DiagnosticNote> notes;
+  std::string message = "no position satisfies every specifier of this " + o.cls->name;
+  for (const PositionConstraint& c : constraints) {
+    if (!c.is_point && c.region.IsEmpty()) {
+      message = DescribeSpecifier(*c.specifier, program_.sources) + " leaves no room for this " +
+                o.cls->name;
+      if (c.specifier->kind == SpecifierKind::kCompletelyOn) {
+        const Vector3d& dims = o.dimensions;
+        message += ": its footprint (" + Format(dims.x()) + " m x " + Format(dims.y()) +
+                   " m for its orientation) does not fit on the surface below it";
+        const Value target = Eval(*c.specifier->target);
+        if (const auto* ref = std::get_if<ObjectRef>(&target.data)) {
+          const SceneObject& x = scene_.objects[ref->index];
+          message += " (" + x.DisplayName(ref->index) + "'s top is " + Format(x.dimensions.x()) +
+                     " m x " + Format(x.dimensions.y()) + " m)";
+        }
+      }
+      Fail(c.specifier->span, "empty-region", message,
+           {{{}, false, "make the object smaller or the surface larger, or use 'on' to allow overhang"}});
+    }
+    std::string kind = c.is_point ? "the point (" + Format(c.p_W.x()) + ", " + Format(c.p_W.y()) +
+                                        ", " + Format(c.p_W.z()) + ")"
+                                  : c.region.Describe();
+    notes.push_back({c.specifier->span, true, "this specifier gives " + kind});
+  }
+  if (workspace) {
+    notes.push_back({{}, false, "the workspace (shrunk by the object's size) is " + workspace->Describe()});
+  }
+  notes.push_back({{}, false, "these regions do not overlap in any scene; loosen one of them"});
+  Fail(span, "empty-region", message, std::move(notes));
+}
+
+Vector3d Interpreter::SampleNaive(const std::vector<PositionConstraint>& constraints, int index,
+                                  SourceSpan span) {
+  const ConvexRegion* workspace = Workspace();
+  if (!workspace || !workspace->IsBounded()) {
+    Fail(span, "naive-needs-workspace",
+         "naive sampling draws positions from the workspace, but this program has no bounded "
+         "'workspace' region");
+  }
+  Vector3d p = Vector3d::Zero();
+  bool have_point = false;
+  ConvexRegion domain = *workspace;
+  for (const PositionConstraint& c : constraints) {
+    if (c.is_point) {
+      p = c.p_W;
+      have_point = true;
+    } else if (c.region.dimension() < 3 && !c.region.IsEmpty()) {
+      domain = geometry::Intersect(domain, HullRegion(c.region));
+    }
+  }
+  if (!have_point) {
+    if (domain.IsEmpty()) {
+      Reject(RejectionKind::kContainment, scene_.objects[index].DisplayName(index) +
+                                              " has no room in the workspace", span);
+    }
+    p = geometry::RegionSampler(domain).Sample(rng());
+  }
+  for (const PositionConstraint& c : constraints) {
+    if (c.is_point || c.region.Contains(p, 1e-9)) continue;
+    Reject(IsRelativeSpecifier(c.specifier->kind) ? RejectionKind::kRelativePosition
+                                                  : RejectionKind::kContainment,
+           scene_.objects[index].DisplayName(index) + " " +
+               DescribeSpecifier(*c.specifier, program_.sources),
+           c.specifier->span);
+  }
+  return p;
+}
+
+}  // namespace prs::lang::internal

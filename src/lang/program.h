@@ -1,0 +1,92 @@
+// The compiled form of a scenario: parsed modules, the class table, and one evaluation plan
+// per object-creation site. Built once by Compile(); read-only while scenes are sampled,
+// so any number of threads may sample from one CompiledProgram.
+#pragma once
+
+#include <map>
+#include <memory>
+#include <string>
+#include <unordered_map>
+#include <vector>
+
+#include "lang/ast.h"
+#include "lang/source.h"
+
+namespace prs::lang {
+
+/// A property's default in a class body (or a built-in default when `expr` is null).
+struct PropertyDefault {
+  std::string name;
+  const Expr* expr = nullptr;          // null: built-in default (origin, identity, 1 m, 0, False)
+  int module_index = -1;               // module whose globals the default is evaluated in
+  std::vector<std::string> self_reads; // properties read as `self.NAME`
+  SourceSpan span;
+};
+
+/// An object class. Built-in: Point3D <- OrientedPoint3D <- Object <- user classes.
+struct ClassInfo {
+  std::string name;
+  const ClassInfo* parent = nullptr;
+  SourceSpan span;
+  bool has_span = false;
+  bool has_orientation = false;  // OrientedPoint3D and below
+  bool has_box = false;          // Object and below: width, length, height
+  std::vector<PropertyDefault> defaults;  // inherited ones first; a child's override in place
+
+  const PropertyDefault* FindDefault(const std::string& property) const;
+  bool IsSubclassOf(const ClassInfo* other) const;
+};
+
+/// Where a property of an object comes from in a creation plan.
+enum class PlanStepKind {
+  kDefault,      // a class default
+  kWith,         // `with PROP value`
+  kPosition,     // every position specifier together (regions intersect)
+  kOrientation,  // the orientation: `facing`, `facing toward`, `with orientation`, or default,
+                 // composed with yaw, pitch and roll
+};
+
+struct PlanStep {
+  PlanStepKind kind;
+  std::string property;
+  const PropertyDefault* default_value = nullptr;  // kDefault
+  const Specifier* specifier = nullptr;            // kWith, or the orientation specifier
+};
+
+/// How to build an object at one creation site: properties in dependency order.
+struct ObjectPlan {
+  const ClassInfo* cls = nullptr;
+  std::vector<PlanStep> steps;
+  std::vector<const Specifier*> position_specifiers;
+  /// Size and orientation are known before the position, so the workspace (eroded by the
+  /// object's box) is folded into the position region instead of being a rejection check.
+  bool fold_workspace = false;
+};
+
+/// A parsed module (the main file or an imported one).
+struct ModuleInfo {
+  std::string name;  // module name ("model"), or the main file's path
+  FileId file = 0;
+  Module ast;
+  std::vector<std::string> global_names;  // every name bound at top level, imports included
+};
+
+struct CompiledProgram {
+  SourceManager sources;
+  std::vector<std::unique_ptr<ModuleInfo>> modules;  // imported modules first, main last
+  std::vector<std::unique_ptr<ClassInfo>> classes;   // built-ins first
+  std::unordered_map<const CreateObject*, ObjectPlan> plans;
+  /// Plans for a bare class name used as a statement or assigned (`c = Cube`).
+  std::unordered_map<const ClassInfo*, ObjectPlan> default_plans;
+  /// `-p NAME=VALUE` overrides: the text is parsed as a number when it is one, else a string.
+  std::unordered_map<std::string, std::string> param_overrides;
+  /// For each module, which module each `from M import *` statement runs.
+  std::unordered_map<const FromImportStmt*, int> import_targets;
+  /// For each module, its class table (name -> class) as seen by its creation sites.
+  std::vector<std::map<std::string, const ClassInfo*>> class_scopes;
+  int main_module = 0;
+
+  const ModuleInfo& main() const { return *modules[main_module]; }
+};
+
+}  // namespace prs::lang

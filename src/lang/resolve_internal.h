@@ -1,0 +1,35 @@
+// Internals shared by the resolver's files: a generic child-expression visitor, the name
+// checker, and the object-creation planner.
+#pragma once
+
+#include <functional>
+#include <set>
+#include <string>
+#include <vector>
+
+#include "lang/ast.h"
+#include "lang/diagnostics.h"
+#include "lang/program.h"
+
+namespace prs::lang::internal {
+
+/// Calls `visit` on each direct child expression of `expr` (specifier arguments included).
+void ForEachChild(const Expr& expr, const std::function<void(const Expr&)>& visit);
+
+/// Adds the names bound at the top level of `body` (descending into if/for/while blocks, not
+/// into nested functions) to `names`; `from M import *` adds M's globals.
+void CollectBoundNames(const CompiledProgram& program, const std::vector<StmtPtr>& body,
+                       std::set<std::string>& names);
+
+/// Checks names, `self`, and call arities in module `m`, and plans its object creations.
+void CheckModule(CompiledProgram& program, int m, DiagnosticEngine& diagnostics);
+
+/// Builds the plan for one creation site of class `cls`; reports duplicate and cyclic
+/// property sources. Returns false on error.
+bool BuildObjectPlan(const CreateObject& create, const ClassInfo& cls, ObjectPlan& plan,
+                     DiagnosticEngine& diagnostics);
+
+/// Builds the plan for a class created with no specifiers.
+bool BuildDefaultPlan(const ClassInfo& cls, ObjectPlan& plan, DiagnosticEngine& diagnostics);
+
+}  // namespace prs::lang::internal

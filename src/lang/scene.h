@@ -1,0 +1,61 @@
+// What one run of a program produces: a scene (placed objects and parameters), or the reason
+// the attempt was rejected. Plain data, read by the sampler and the output writers.
+#pragma once
+
+#include <Eigen/Core>
+#include <Eigen/Geometry>
+#include <optional>
+#include <string>
+#include <utility>
+#include <vector>
+
+#include "lang/source.h"
+#include "lang/value.h"
+
+namespace prs::lang {
+
+struct ClassInfo;
+
+struct SceneObject {
+  std::optional<std::string> name;  // the first variable it was bound to; none if anonymous
+  const ClassInfo* cls = nullptr;
+  SourceSpan span;                  // where it was created
+  Eigen::Vector3d p_WO = Eigen::Vector3d::Zero();
+  Eigen::Quaterniond R_WO = Eigen::Quaterniond::Identity();
+  Eigen::Vector3d dimensions = Eigen::Vector3d::Zero();  // width, length, height (0 for points)
+  bool allow_collisions = false;
+  /// Every property in definition order, position and orientation included.
+  std::vector<std::pair<std::string, Value>> properties;
+
+  const Value* FindProperty(const std::string& property) const;
+  /// The object's display name: its variable, or "Class#index".
+  std::string DisplayName(int index) const;
+};
+
+struct Scene {
+  std::vector<SceneObject> objects;
+  std::vector<std::pair<std::string, Value>> params;
+};
+
+/// Why an attempt was rejected. Reasons are grouped by `kind` and `culprit` for accounting.
+enum class RejectionKind {
+  kCollision,      // two objects' boxes overlap
+  kRequirement,    // a `require` failed
+  kWorkspace,      // an object's box is not inside the workspace
+  kEmptyRegion,    // the intersection of an object's position specifiers is empty
+  kOutsideRegion,  // a point-valued position is not inside another specifier's region
+  kRelativePosition,  // naive mode: a left of / ahead of / ... specifier does not hold
+  kContainment,       // naive mode: an on / completely on / in specifier does not hold
+};
+
+struct Rejection {
+  RejectionKind kind;
+  std::string culprit;  // e.g. "tr_1 and tr_2", "require at scene.prs:12"
+  SourceSpan span;      // the statement or specifier responsible
+  std::string detail;   // numbers for the failure message
+};
+
+/// A stable lowercase name for a rejection kind ("collision", "requirement", ...).
+const char* RejectionKindName(RejectionKind kind);
+
+}  // namespace prs::lang

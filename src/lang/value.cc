@@ -1,0 +1,85 @@
+// Small helpers over runtime values: constructors for shared containers, type names for
+// messages, and a short printable form.
+#include "lang/value.h"
+
+#include <cmath>
+#include <cstdio>
+
+#include "lang/program.h"
+
+namespace prs::lang {
+
+Value MakeString(std::string s) { return StringPtr(std::make_shared<const std::string>(std::move(s))); }
+
+Value MakeTuple(std::vector<Value> elements) {
+  auto tuple = std::make_shared<TupleData>();
+  tuple->elements = std::move(elements);
+  return tuple;
+}
+
+Value MakeList(std::vector<Value> elements) {
+  auto list = std::make_shared<ListData>();
+  list->elements = std::move(elements);
+  return list;
+}
+
+std::string TypeName(const Value& v) {
+  static const char* const kNames[] = {
+      "None",   "boolean", "number",   "string",   "vector",   "oriented point",
+      "orientation", "object", "region", "class", "function", "built-in function",
+      "module", "method",  "tuple",    "list",     "dict"};
+  static_assert(std::variant_size_v<decltype(v.data)> == std::size(kNames));
+  return kNames[v.data.index()];
+}
+
+namespace {
+std::string FormatNumber(double x) {
+  if (std::isfinite(x) && x == std::trunc(x) && std::fabs(x) < 1e15) {
+    return std::to_string(static_cast<long long>(x));
+  }
+  char buffer[32];
+  std::snprintf(buffer, sizeof buffer, "%.6g", x);
+  return buffer;
+}
+
+std::string JoinRepr(const std::vector<Value>& items) {
+  std::string out;
+  for (size_t i = 0; i < items.size(); ++i) out += (i ? ", " : "") + Repr(items[i]);
+  return out;
+}
+}  // namespace
+
+std::string Repr(const Value& v) {
+  if (v.Is<NoneValue>()) return "None";
+  if (const auto* b = std::get_if<bool>(&v.data)) return *b ? "True" : "False";
+  if (const auto* x = std::get_if<double>(&v.data)) return FormatNumber(*x);
+  if (const auto* s = std::get_if<StringPtr>(&v.data)) return "'" + **s + "'";
+  if (const auto* p = std::get_if<Eigen::Vector3d>(&v.data)) {
+    return "(" + FormatNumber(p->x()) + ", " + FormatNumber(p->y()) + ", " + FormatNumber(p->z()) + ")";
+  }
+  if (const auto* t = std::get_if<std::shared_ptr<TupleData>>(&v.data)) {
+    return "(" + JoinRepr((*t)->elements) + ((*t)->elements.size() == 1 ? ",)" : ")");
+  }
+  if (const auto* l = std::get_if<std::shared_ptr<ListData>>(&v.data)) {
+    return "[" + JoinRepr((*l)->elements) + "]";
+  }
+  if (const auto* c = std::get_if<const ClassInfo*>(&v.data)) return "class " + (*c)->name;
+  if (const auto* r = std::get_if<RegionPtr>(&v.data)) return (*r)->Describe();
+  return TypeName(v);
+}
+
+const PropertyDefault* ClassInfo::FindDefault(const std::string& property) const {
+  for (const PropertyDefault& d : defaults) {
+    if (d.name == property) return &d;
+  }
+  return nullptr;
+}
+
+bool ClassInfo::IsSubclassOf(const ClassInfo* other) const {
+  for (const ClassInfo* c = this; c; c = c->parent) {
+    if (c == other) return true;
+  }
+  return false;
+}
+
+}  // namespace prs::lang

@@ -1,0 +1,13 @@
+// Scene output in the spec §8 format ("prs-scene/1"), one JSON object per scene.
+#pragma once
+
+#include <string>
+
+#include "sampling/sampler.h"
+
+namespace prs::output {
+
+/// Renders one sampled scene as a single line of JSON (no trailing newline).
+std::string FormatSceneJson(const sampling::SampledScene& sampled);
+
+}  // namespace prs::output

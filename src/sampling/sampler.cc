@@ -1,0 +1,65 @@
+// Whole-scene rejection sampling over the interpreter, with per-reason accounting and a
+// located failure message when the attempt limit is reached.
+#include "sampling/sampler.h"
+
+namespace prs::sampling {
+
+void RejectionCounts::Add(const lang::Rejection& rejection) {
+  const auto key = std::make_pair(rejection.kind, rejection.culprit);
+  ++by_culprit[key];
+  ++by_kind[rejection.kind];
+  ++total;
+  examples.emplace(key, rejection);
+}
+
+void RejectionCounts::Merge(const RejectionCounts& other) {
+  for (const auto& [key, n] : other.by_culprit) by_culprit[key] += n;
+  for (const auto& [kind, n] : other.by_kind) by_kind[kind] += n;
+  total += other.total;
+  for (const auto& [key, example] : other.examples) examples.emplace(key, example);
+}
+
+namespace {
+
+[[noreturn]] void ThrowSamplingFailure(const RejectionCounts& counts, int64_t attempts) {
+  const auto* worst = &*counts.by_culprit.begin();
+  for (const auto& entry : counts.by_culprit) {
+    if (entry.second > worst->second) worst = &entry;
+  }
+  const lang::Rejection& example = counts.examples.at(worst->first);
+  lang::Diagnostic d;
+  d.id = "sampling-failed";
+  d.span = example.span;
+  d.message = "no valid scene after " + std::to_string(attempts) +
+              " attempts; the most frequent reason was " +
+              lang::RejectionKindName(worst->first.first) + ": " + worst->first.second + " (" +
+              std::to_string(worst->second) + " times)";
+  for (const auto& [kind, n] : counts.by_kind) {
+    d.notes.push_back({{}, false, std::string(lang::RejectionKindName(kind)) + ": " +
+                                      std::to_string(n) + " rejections"});
+  }
+  d.notes.push_back({{}, false, "relax this constraint, or raise the limit with --max-attempts"});
+  throw lang::ScenarioError(std::move(d));
+}
+
+}  // namespace
+
+SampledScene SampleScene(const lang::CompiledProgram& program, uint64_t seed, uint64_t index,
+                         const SampleOptions& options) {
+  SampledScene result;
+  result.seed = seed;
+  result.index = index;
+  geometry::Rng rng(seed, index);
+  while (result.attempts < options.max_attempts) {
+    ++result.attempts;
+    lang::AttemptResult attempt = lang::RunAttempt(program, rng, options.run);
+    if (auto* scene = std::get_if<lang::Scene>(&attempt)) {
+      result.scene = std::move(*scene);
+      return result;
+    }
+    result.rejections.Add(std::get<lang::Rejection>(attempt));
+  }
+  ThrowSamplingFailure(result.rejections, result.attempts);
+}
+
+}  // namespace prs::sampling
