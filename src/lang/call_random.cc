@@ -30,6 +30,11 @@ Value Interpreter::CallDistribution(Builtin id, const std::vector<Value>& args,
                            : id == Builtin::kDiscreteRange ? DistributionKind::kDiscreteRange
                                                            : DistributionKind::kNormal;
       distribution->args = {number(0, "the first parameter"), number(1, "the second parameter")};
+      if (id == Builtin::kDiscreteRange) CheckWholeNumbers(args, spans);
+      if (id == Builtin::kNormal && !(distribution->args[1].As<double>() >= 0)) {
+        Fail(spans[1], "bad-value", "a normal's standard deviation must be >= 0, got " +
+                                        FormatNumber(distribution->args[1].As<double>()));
+      }
       break;
     case Builtin::kTruncatedNormal:
       distribution->kind = DistributionKind::kTruncatedNormal;
@@ -63,6 +68,19 @@ Value Interpreter::CallDistribution(Builtin id, const std::vector<Value>& args,
   Value result = Draw(*distribution, span);
   result.origin = distribution;
   return result;
+}
+
+// DiscreteRange's bounds are integers; a fractional bound is almost surely a slip for Range.
+void Interpreter::CheckWholeNumbers(const std::vector<Value>& args,
+                                    const std::vector<SourceSpan>& spans) {
+  for (size_t i = 0; i < 2; ++i) {
+    const double x = args[i].As<double>();
+    if (x != std::trunc(x)) {
+      Fail(spans[i], "bad-value",
+           "DiscreteRange's bounds must be whole numbers, got " + FormatNumber(x),
+           {{{}, false, "use Range(low, high) for a real number in an interval"}});
+    }
+  }
 }
 
 // Draws one value from a distribution; the result remembers where it came from.

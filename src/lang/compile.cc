@@ -36,7 +36,9 @@ class ModuleLoader {
   // Parses `text` as module `name` and every module it imports; returns its index.
   int LoadModule(const std::string& name, const std::string& path, std::string text) {
     const FileId file = program_.sources.AddFile(path, std::move(text));
-    loading_.push_back(name);
+    // Modules are known by their file's stem, so a module importing the main file by name
+    // is a cycle too.
+    loading_.push_back(std::filesystem::path(path).stem().string());
     ParseOptions parse_options;
     const std::string directory = std::filesystem::path(path).parent_path().string();
     parse_options.import_classes = [this, directory](const std::string& module,
@@ -79,23 +81,26 @@ class ModuleLoader {
       }
       index = LoadModule(module, *path, *fs_.ReadFile(*path));
     }
-    return ExportedClassNames(index);
+    std::vector<std::string> names;
+    std::vector<bool> visited(program_.modules.size(), false);
+    CollectExportedClassNames(index, visited, names);
+    return names;
   }
 
   // Class names a module makes visible: its own classes and those of the modules it imports.
-  std::vector<std::string> ExportedClassNames(int index) const {
-    std::vector<std::string> names;
+  // `visited` guards against import cycles, which are reported but still leave a loop here.
+  void CollectExportedClassNames(int index, std::vector<bool>& visited,
+                                 std::vector<std::string>& names) const {
+    if (visited[index]) return;
+    visited[index] = true;
     for (const StmtPtr& stmt : program_.modules[index]->ast.body) {
       if (const auto* cls = std::get_if<ClassDef>(&stmt->node)) {
         names.push_back(cls->name.name);
       } else if (const auto* import = std::get_if<FromImportStmt>(&stmt->node)) {
         auto it = loaded_.find(import->module.name);
-        if (it == loaded_.end()) continue;
-        std::vector<std::string> inner = ExportedClassNames(it->second);
-        names.insert(names.end(), inner.begin(), inner.end());
+        if (it != loaded_.end()) CollectExportedClassNames(it->second, visited, names);
       }
     }
-    return names;
   }
 
   std::optional<std::string> FindModule(const std::string& module, const std::string& directory) {

@@ -112,6 +112,14 @@ void RenderSnippet(std::string* out, SourceSpan span, const std::string& fix_it,
 }  // namespace
 
 void DiagnosticEngine::Report(Diagnostic diagnostic) {
+  // Stages may meet the same fault twice (a class's cycle in each plan that uses it): keep one.
+  for (const Diagnostic& earlier : diagnostics_) {
+    if (earlier.id == diagnostic.id && earlier.message == diagnostic.message &&
+        earlier.has_span == diagnostic.has_span && earlier.span.file == diagnostic.span.file &&
+        earlier.span.begin == diagnostic.span.begin && earlier.span.end == diagnostic.span.end) {
+      return;
+    }
+  }
   if (diagnostic.severity == Severity::kError) ++error_count_;
   diagnostics_.push_back(std::move(diagnostic));
 }
@@ -194,6 +202,7 @@ const std::vector<DiagnosticKind>& DiagnosticCatalogue() {
       {"expected-specifier", "parser", "a class name followed by something not a specifier"},
       {"unknown-specifier", "parser", "a misspelled specifier keyword"},
       {"missing-of", "parser", "`left`, `ahead`, … without `of`"},
+      {"unknown-side", "parser", "a misspelled compound side such as `top frnt of t`"},
       {"bad-axis", "parser", "`aligned with X on` an axis other than x, y, z"},
       {"invalid-assignment-target", "parser", "assigning to something that is not a name"},
       {"unsupported-feature", "lexer, parser", "a Python feature ProbRobScene does not support"},
@@ -206,7 +215,33 @@ const std::vector<DiagnosticKind>& DiagnosticCatalogue() {
       {"nested-definition", "parser", "`class` inside a block (classes are top-level only)"},
       {"too-deeply-nested", "parser", "blocks or expressions nested beyond the parser's limit"},
       // ---- resolver / interpreter (appended by those stages) ------------------
-      // INTERPRETER IDS BELOW: add {"id", "interpreter", "description"} entries here.
+      {"file-not-found", "compiler", "the main file cannot be read"},
+      {"module-not-found", "compiler", "`from NAME import *` finds no NAME.prs on the search path"},
+      {"import-cycle", "compiler", "modules that import each other, directly or not"},
+      {"unknown-name", "resolver", "a name that is never bound (with the closest bound name)"},
+      {"unknown-module", "resolver", "`import NAME` of a module other than `math`"},
+      {"unknown-attribute", "resolver, interpreter", "`math.NAME` that `math` does not have"},
+      {"misplaced-self", "resolver", "`self` outside a class's property defaults"},
+      {"misplaced-statement", "resolver", "`return`, `param`, ... where they cannot appear"},
+      {"misplaced-definition", "resolver", "`class` or `def` inside a block"},
+      {"wrong-argument-count", "resolver, interpreter", "a call with too many or too few arguments"},
+      {"bad-argument", "resolver", "an unknown or repeated keyword argument"},
+      {"duplicate-specifier", "planner", "one property set by two specifiers of an object"},
+      {"dependency-cycle", "planner", "an object's properties that depend on each other in a cycle"},
+      {"bad-specifier", "planner, interpreter", "a specifier applied to a value it cannot use"},
+      {"type-error", "interpreter", "a value of the wrong type (`on 3`, `\"a\" + 1`)"},
+      {"bad-value", "interpreter", "a value of the right type out of range (negative size, 1/0)"},
+      {"bad-unpack", "interpreter", "`a, b = e` where e has a different number of parts"},
+      {"bad-index", "interpreter", "an index out of range, or a missing dict key"},
+      {"bad-resample", "interpreter", "`resample` of a value no distribution drew"},
+      {"bad-region", "interpreter", "a region constructor given degenerate arguments"},
+      {"unbound-name", "interpreter", "a variable read before any assignment ran"},
+      {"unknown-property", "interpreter", "an object property that is not defined (typo hint)"},
+      {"unbounded-region", "interpreter", "an object's position region is unbounded"},
+      {"empty-region", "interpreter", "no position satisfies an object's specifiers"},
+      {"limit-exceeded", "interpreter", "a run exceeded a loop, recursion or object limit"},
+      {"naive-needs-workspace", "interpreter", "naive sampling with no bounded workspace"},
+      {"sampling-failed", "sampler", "no valid scene within the attempt limit, or none possible"},
   };
   return kCatalogue;
 }

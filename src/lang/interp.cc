@@ -37,6 +37,7 @@ AttemptResult Interpreter::Run() {
     RunModule(program_.main_module);
     CheckWorkspace();
   } catch (RejectSignal& signal) {
+    signal.rejection.certain = draws_ == 0;
     return std::move(signal.rejection);
   }
   return std::move(scene_);
@@ -142,7 +143,11 @@ void Interpreter::CountLoopIteration(SourceSpan span) {
 }
 
 void Interpreter::ExecAssign(const AssignStmt& node, SourceSpan span) {
+  const bool creates = std::holds_alternative<lang::CreateObject>(node.value->node) ||
+                       std::holds_alternative<ClassRef>(node.value->node);
+  if (!node.is_tuple_unpack && creates) pending_name_ = &node.targets[0].name;
   Value value = EvalStatementValue(*node.value);
+  pending_name_ = nullptr;
   if (!node.is_tuple_unpack) {
     if (const auto* object = std::get_if<ObjectRef>(&value.data)) {
       auto& name = scene_.objects[object->index].name;
@@ -173,7 +178,7 @@ void Interpreter::ExecRequire(const RequireStmt& node, SourceSpan span) {
     const double p = EvalNumber(*node.probability, "the probability of 'require[p]'");
     if (!(p >= 0 && p <= 1)) {
       Fail(node.probability->span, "bad-value",
-           "a requirement's probability must be between 0 and 1, got " + std::to_string(p));
+           "a requirement's probability must be between 0 and 1, got " + FormatNumber(p));
     }
     if (DrawUniform(0, 1) >= p) return;  // not enforced in this scene
   }

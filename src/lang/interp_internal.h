@@ -101,6 +101,7 @@ class Interpreter {
                      SourceSpan span);
   Value CallMethod(const BoundMethod& method, const std::vector<Value>& args,
                    const std::vector<SourceSpan>& spans, SourceSpan span);
+  void CheckWholeNumbers(const std::vector<Value>& args, const std::vector<SourceSpan>& spans);
   Value Draw(const Distribution& distribution, SourceSpan span);
   Value Resample(const Value& v, SourceSpan span);
 
@@ -109,12 +110,14 @@ class Interpreter {
   void RunPlanStep(const PlanStep& step, int index, SourceSpan span);
   Value EvalDefault(const PropertyDefault& d, int index);
   void SetOrientation(const PlanStep& step, int index);
-  void SetProperty(int index, const std::string& name, Value value);
+  // `value_span` locates the value's expression for type and range errors.
+  void SetProperty(int index, const std::string& name, Value value, SourceSpan value_span);
   Value GetProperty(int index, const std::string& name, SourceSpan span);
   void FinishObject(int index, SourceSpan span);
   void CheckCollisions(int index);
   void CheckWorkspace();
   geometry::OrientedBox BoxOf(int index) const;
+  std::string DescribeBox(int index) const;  // "c (0.05 x 0.05 x 0.05 m at (x, y, z))"
   const geometry::ConvexRegion* Workspace() const;
 
   // --- placement (placement.cc) ---
@@ -123,12 +126,20 @@ class Interpreter {
   PositionConstraint EvalOnConstraint(const Specifier& s, int index, bool completely);
   PositionConstraint EvalSideConstraint(const Specifier& s, int index);
   Eigen::Vector3d SampleRegion(const std::vector<PositionConstraint>& constraints,
-                               const geometry::ConvexRegion& region, int index, SourceSpan span);
+                               const geometry::ConvexRegion& region,
+                               const geometry::ConvexRegion* workspace, int index, SourceSpan span);
   Eigen::Vector3d SampleNaive(const std::vector<PositionConstraint>& constraints, int index,
                               SourceSpan span);
-  [[noreturn]] void ExplainEmptyRegion(const std::vector<PositionConstraint>& constraints,
-                                       const geometry::ConvexRegion* workspace, int index,
-                                       SourceSpan span);
+  // Why no position fits: the empty specifier with the sizes involved, or every region.
+  Diagnostic ExplainEmptyRegion(const std::vector<PositionConstraint>& constraints,
+                                const geometry::ConvexRegion* workspace, int index, SourceSpan span);
+  std::string DescribeFootprintMismatch(const PositionConstraint& c, const SceneObject& o);
+  // Fails at once when nothing random ran yet (every attempt would fail the same way);
+  // otherwise rejects the attempt with the explanation as the rejection's detail.
+  [[noreturn]] void RejectEmptyRegion(RejectionKind kind, std::string culprit, SourceSpan culprit_span,
+                                      const std::vector<PositionConstraint>& constraints,
+                                      const geometry::ConvexRegion* workspace, int index,
+                                      SourceSpan span);
   [[noreturn]] void Reject(RejectionKind kind, std::string culprit, SourceSpan span,
                            std::string detail = "");
 
@@ -141,6 +152,9 @@ class Interpreter {
   std::vector<bool> module_ran_;
   int current_module_ = 0;
   Env* locals_ = nullptr;            // the current function's frame, if any
+  // The variable a statement `NAME = Class ...` binds, so the object carries its name
+  // (in rejection messages) while it is still being placed. Consumed by CreateObject.
+  const std::string* pending_name_ = nullptr;
   int self_index_ = -1;              // the object whose defaults are being evaluated
   int call_depth_ = 0;
   int64_t loop_iterations_ = 0;

@@ -18,13 +18,15 @@ Value Interpreter::CreateObject(const ObjectPlan& plan, SourceSpan span) {
   SceneObject object;
   object.cls = plan.cls;
   object.span = span;
+  if (pending_name_) object.name = *pending_name_;
+  pending_name_ = nullptr;  // nested creations inside the specifiers stay anonymous
   scene_.objects.push_back(std::move(object));
   completed_.push_back(false);
   for (const PlanStep& step : plan.steps) {
     if (step.kind == PlanStepKind::kPosition) {
       const Vector3d p = PlacePosition(plan, index, span);
       scene_.objects[index].p_WO = p;
-      SetProperty(index, "position", Value(p));
+      SetProperty(index, "position", Value(p), span);
     } else {
       RunPlanStep(step, index, span);
     }
@@ -36,10 +38,11 @@ Value Interpreter::CreateObject(const ObjectPlan& plan, SourceSpan span) {
 void Interpreter::RunPlanStep(const PlanStep& step, int index, SourceSpan span) {
   switch (step.kind) {
     case PlanStepKind::kDefault:
-      SetProperty(index, step.property, EvalDefault(*step.default_value, index));
+      SetProperty(index, step.property, EvalDefault(*step.default_value, index),
+                  step.default_value->expr ? step.default_value->expr->span : span);
       break;
     case PlanStepKind::kWith:
-      SetProperty(index, step.property, Eval(*step.specifier->target));
+      SetProperty(index, step.property, Eval(*step.specifier->target), step.specifier->target->span);
       break;
     case PlanStepKind::kOrientation:
       SetOrientation(step, index);
@@ -100,17 +103,19 @@ void Interpreter::SetOrientation(const PlanStep& step, int index) {
       geometry::CalcRotationFromYawPitchRoll(angle("yaw"), angle("pitch"), angle("roll"));
   const Eigen::Quaterniond R_WO(R_base.toRotationMatrix() * R_local);
   scene_.objects[index].R_WO = R_WO.normalized();
-  SetProperty(index, "orientation", Orientation{scene_.objects[index].R_WO});
+  SetProperty(index, "orientation", Orientation{scene_.objects[index].R_WO},
+              scene_.objects[index].span);
 }
 
-void Interpreter::SetProperty(int index, const std::string& name, Value value) {
+void Interpreter::SetProperty(int index, const std::string& name, Value value,
+                              SourceSpan value_span) {
   SceneObject& o = scene_.objects[index];
   const bool numeric = name == "width" || name == "length" || name == "height" || name == "yaw" ||
                        name == "pitch" || name == "roll";
   if (numeric) {
-    const double x = ToNumber(value, o.span, "'" + name + "'");
+    const double x = ToNumber(value, value_span, "'" + name + "'");
     if (!std::isfinite(x) || (name[0] != 'y' && name[0] != 'p' && name[0] != 'r' && x < 0)) {
-      Fail(o.span, "bad-value", "the " + name + " of this " + o.cls->name + " is " + Repr(x) +
+      Fail(value_span, "bad-value", "the " + name + " of this " + o.cls->name + " is " + Repr(x) +
                                     "; sizes must be finite and >= 0");
     }
     value = Value(x);
@@ -155,6 +160,15 @@ geometry::OrientedBox Interpreter::BoxOf(int index) const {
   return {o.p_WO, o.R_WO.toRotationMatrix(), o.dimensions / 2};
 }
 
+std::string Interpreter::DescribeBox(int index) const {
+  const SceneObject& o = scene_.objects[index];
+  const Vector3d& p = o.p_WO;
+  const Vector3d& d = o.dimensions;
+  return o.DisplayName(index) + " (" + FormatNumber(d.x()) + " x " + FormatNumber(d.y()) + " x " +
+         FormatNumber(d.z()) + " m at (" + FormatNumber(p.x()) + ", " + FormatNumber(p.y()) + ", " +
+         FormatNumber(p.z()) + "))";
+}
+
 void Interpreter::CheckCollisions(int index) {
   const SceneObject& o = scene_.objects[index];
   if (!o.cls->has_box || o.allow_collisions) return;
@@ -167,7 +181,7 @@ void Interpreter::CheckCollisions(int index) {
       Reject(RejectionKind::kCollision,
              scene_.objects[first].DisplayName(first) + " and " +
                  scene_.objects[second].DisplayName(second),
-             scene_.objects[index].span);
+             scene_.objects[index].span, DescribeBox(first) + " overlaps " + DescribeBox(second));
     }
   }
 }

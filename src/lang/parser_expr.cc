@@ -392,6 +392,8 @@ std::optional<ExprPtr> Parser::TryParseSidePoint() {
   if (Peek(1).kind == TK::kName) {
     if (std::optional<Side> compound = CompoundSide(side, Peek(1).lexeme)) {
       if (CheckWord("of", 2) || CanStartOperand(2)) side = *compound, words = 2;
+    } else if (CheckWord("of", 2) && !IsContinuationWord(Peek(1).lexeme)) {
+      FailUnknownCompoundSide();  // `top frnt of t`
     }
   }
   bool has_of = CheckWord("of", words);
@@ -402,6 +404,27 @@ std::optional<ExprPtr> Parser::TryParseSidePoint() {
   if (has_of) Advance();
   ExprPtr object = ParsePostfix();
   return MakeExpr(begin, SidePointExpr{side, std::move(object), keyword_span});
+}
+
+// A side word, then a word that is not a side, then `of`: a misspelled compound side.
+void Parser::FailUnknownCompoundSide() {
+  const std::string first(Peek().lexeme);
+  const Token& second = Peek(1);
+  std::vector<std::string> valid;
+  for (const auto& [word, side] : SideWords()) {
+    if (CompoundSide(SideWords().at(first), word)) valid.push_back(first + " " + std::string(word));
+  }
+  std::sort(valid.begin(), valid.end());
+  const std::string written = first + " " + std::string(second.lexeme);
+  const std::string suggestion = SuggestClosest(written, valid);
+  std::string message = fmt::format("unknown side '{}'", written);
+  if (!suggestion.empty()) {
+    message += fmt::format("; did you mean '{}'?", suggestion);
+    Fail("unknown-side", second.span, message, suggestion.substr(first.size() + 1));
+  }
+  message += valid.empty() ? fmt::format("; '{}' takes no second word: write '{} of X'", first, first)
+                           : fmt::format("; '{}' combines with {}", first, fmt::join(valid, ", "));
+  Fail("unknown-side", second.span, message);
 }
 
 // paren := '(' ')' | '(' expr ')' | '(' expr ',' [expr {',' expr} [',']] ')'

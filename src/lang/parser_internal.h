@@ -122,6 +122,7 @@ class Parser {
   std::optional<ExprPtr> ParseOptionalBy();
   void ExpectWord(std::string_view word, std::string_view after);
   [[noreturn]] void FailUnknownClass(const Token& name);
+  [[noreturn]] void FailUnknownCompoundSide();
   void CheckMisspelledSpecifier(const Token& class_name, bool after_comma);
   void AddClass(const std::string& name, std::optional<SourceSpan> where);
 

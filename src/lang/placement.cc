@@ -88,22 +88,22 @@ Vector3d Interpreter::PlacePosition(const ObjectPlan& plan, int index, SourceSpa
   for (const PositionConstraint& c : constraints) {
     if (!c.is_point) continue;
     if (!region.Contains(c.p_W, 1e-9)) {
-      if (draws_ == 0) ExplainEmptyRegion(constraints, workspace, index, span);
-      Reject(RejectionKind::kOutsideRegion,
-             scene_.objects[index].DisplayName(index) + " " + DescribeSpecifier(*c.specifier, program_.sources),
-             c.specifier->span);
+      RejectEmptyRegion(RejectionKind::kOutsideRegion,
+                        scene_.objects[index].DisplayName(index) + " " +
+                            DescribeSpecifier(*c.specifier, program_.sources),
+                        c.specifier->span, constraints, workspace, index, span);
     }
     return c.p_W;
   }
-  return SampleRegion(constraints, region, index, span);
+  return SampleRegion(constraints, region, workspace, index, span);
 }
 
 Vector3d Interpreter::SampleRegion(const std::vector<PositionConstraint>& constraints,
-                                   const ConvexRegion& region, int index, SourceSpan span) {
+                                   const ConvexRegion& region, const ConvexRegion* workspace,
+                                   int index, SourceSpan span) {
   if (region.IsEmpty()) {
-    if (draws_ == 0) ExplainEmptyRegion(constraints, Workspace(), index, span);
-    Reject(RejectionKind::kEmptyRegion,
-           "no room for " + scene_.objects[index].DisplayName(index), span);
+    RejectEmptyRegion(RejectionKind::kEmptyRegion, "no room for " + scene_.objects[index].DisplayName(index),
+                      span, constraints, workspace, index, span);
   }
   if (!region.IsBounded()) {
     std::vector<DiagnosticNote> notes;
@@ -240,39 +240,59 @@ PositionConstraint Interpreter::EvalSideConstraint(const Specifier& s, int index
   return c;
 }
 
-void Interpreter::ExplainEmptyRegion(const std::vector<PositionConstraint>& constraints,
-                                     const ConvexRegion* workspace, int index, SourceSpan span) {
+Diagnostic Interpreter::ExplainEmptyRegion(const std::vector<PositionConstraint>& constraints,
+                                           const ConvexRegion* workspace, int index,
+                                           SourceSpan span) {
   const SceneObject& o = scene_.objects[index];
-  std::vector<DiagnosticNote> notes;
-  std::string message = "no position satisfies every specifier of this " + o.cls->name;
+  Diagnostic d;
+  d.id = "empty-region";
+  d.span = span;
+  d.message = "no position satisfies every specifier of this " + o.cls->name;
   for (const PositionConstraint& c : constraints) {
     if (!c.is_point && c.region.IsEmpty()) {
-      message = DescribeSpecifier(*c.specifier, program_.sources) + " leaves no room for this " +
-                o.cls->name;
-      if (c.specifier->kind == SpecifierKind::kCompletelyOn) {
-        const Vector3d& dims = o.dimensions;
-        message += ": its footprint (" + Format(dims.x()) + " m x " + Format(dims.y()) +
-                   " m for its orientation) does not fit on the surface below it";
-        const Value target = Eval(*c.specifier->target);
-        if (const auto* ref = std::get_if<ObjectRef>(&target.data)) {
-          const SceneObject& x = scene_.objects[ref->index];
-          message += " (" + x.DisplayName(ref->index) + "'s top is " + Format(x.dimensions.x()) +
-                     " m x " + Format(x.dimensions.y()) + " m)";
-        }
-      }
-      Fail(c.specifier->span, "empty-region", message,
-           {{{}, false, "make the object smaller or the surface larger, or use 'on' to allow overhang"}});
+      d.span = c.specifier->span;
+      d.message = DescribeSpecifier(*c.specifier, program_.sources) + " leaves no room for this " +
+                  o.cls->name;
+      if (c.specifier->kind == SpecifierKind::kCompletelyOn) d.message += DescribeFootprintMismatch(c, o);
+      d.notes = {{{}, false, "make the object smaller or the surface larger, or use 'on' to allow overhang"}};
+      return d;
     }
     std::string kind = c.is_point ? "the point (" + Format(c.p_W.x()) + ", " + Format(c.p_W.y()) +
                                         ", " + Format(c.p_W.z()) + ")"
                                   : c.region.Describe();
-    notes.push_back({c.specifier->span, true, "this specifier gives " + kind});
+    d.notes.push_back({c.specifier->span, true, "this specifier gives " + kind});
   }
   if (workspace) {
-    notes.push_back({{}, false, "the workspace (shrunk by the object's size) is " + workspace->Describe()});
+    d.notes.push_back({{}, false, "the workspace (shrunk by the object's size) is " + workspace->Describe()});
   }
-  notes.push_back({{}, false, "these regions do not overlap in any scene; loosen one of them"});
-  Fail(span, "empty-region", message, std::move(notes));
+  d.notes.push_back({{}, false, "these regions do not overlap; loosen one of them"});
+  return d;
+}
+
+std::string Interpreter::DescribeFootprintMismatch(const PositionConstraint& c, const SceneObject& o) {
+  const Vector3d& dims = o.dimensions;
+  std::string text = ": its footprint (" + Format(dims.x()) + " m x " + Format(dims.y()) +
+                     " m for its orientation) does not fit on the surface below it";
+  const Value target = Eval(*c.specifier->target);
+  if (const auto* ref = std::get_if<ObjectRef>(&target.data)) {
+    const SceneObject& x = scene_.objects[ref->index];
+    text += " (" + x.DisplayName(ref->index) + "'s top is " + Format(x.dimensions.x()) + " m x " +
+            Format(x.dimensions.y()) + " m)";
+  }
+  return text;
+}
+
+void Interpreter::RejectEmptyRegion(RejectionKind kind, std::string culprit, SourceSpan culprit_span,
+                                    const std::vector<PositionConstraint>& constraints,
+                                    const ConvexRegion* workspace, int index, SourceSpan span) {
+  Diagnostic why = ExplainEmptyRegion(constraints, workspace, index, span);
+  // Before any random draw the failure repeats in every attempt: report it at once.
+  if (draws_ == 0) throw ScenarioError(std::move(why));
+  std::string detail = why.message;
+  for (const DiagnosticNote& note : why.notes) detail += "; " + note.message;
+  // An empty region is best pointed at by the specifier that emptied it, when there is one.
+  const SourceSpan where = kind == RejectionKind::kEmptyRegion ? why.span : culprit_span;
+  Reject(kind, std::move(culprit), where, std::move(detail));
 }
 
 Vector3d Interpreter::SampleNaive(const std::vector<PositionConstraint>& constraints, int index,

@@ -219,12 +219,16 @@ class Planner {
     d.span = first.has_span ? first.span : (create_ ? create_->class_name.span : SourceSpan{});
     d.has_span = first.has_span || create_ != nullptr;
     d.message = "the properties of this " + cls_.name + " depend on each other in a cycle: " + chain;
+    bool all_defaults = true;
     for (auto it = start; it != stack.end(); ++it) {
       const Source& s = sources_.at(*it);
       d.notes.push_back({s.span, s.has_span, *it + " comes from " + s.description});
+      all_defaults = all_defaults && s.step.kind == PlanStepKind::kDefault;
     }
-    d.notes.push_back({{}, false, "set one of these properties directly, e.g. with 'facing V' "
-                                  "instead of 'facing toward', or drop one specifier"});
+    d.notes.push_back({{}, false, all_defaults
+        ? "give one of these defaults a value that does not read the others"
+        : "set one of these properties directly, e.g. with 'facing V' instead of 'facing toward', "
+          "or drop one specifier"});
     diagnostics_.Report(std::move(d));
   }
 

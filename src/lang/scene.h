@@ -53,6 +53,8 @@ struct Rejection {
   std::string culprit;  // e.g. "tr_1 and tr_2", "require at scene.prs:12"
   SourceSpan span;      // the statement or specifier responsible
   std::string detail;   // numbers for the failure message
+  /// The attempt drew no random value, so every attempt would be rejected the same way.
+  bool certain = false;
 };
 
 /// A stable lowercase name for a rejection kind ("collision", "requirement", ...).

@@ -32,7 +32,6 @@ std::string TypeName(const Value& v) {
   return kNames[v.data.index()];
 }
 
-namespace {
 std::string FormatNumber(double x) {
   if (std::isfinite(x) && x == std::trunc(x) && std::fabs(x) < 1e15) {
     return std::to_string(static_cast<long long>(x));
@@ -41,6 +40,8 @@ std::string FormatNumber(double x) {
   std::snprintf(buffer, sizeof buffer, "%.6g", x);
   return buffer;
 }
+
+namespace {
 
 std::string JoinRepr(const std::vector<Value>& items) {
   std::string out;

@@ -114,5 +114,7 @@ Value MakeList(std::vector<Value> elements);
 std::string TypeName(const Value& v);
 /// A short rendering of a value for messages and for output of unknown property kinds.
 std::string Repr(const Value& v);
+/// A number as messages show it: integers without a decimal point, others to 6 digits.
+std::string FormatNumber(double x);
 
 }  // namespace prs::lang

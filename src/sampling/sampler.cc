@@ -21,6 +21,7 @@ void RejectionCounts::Merge(const RejectionCounts& other) {
 
 namespace {
 
+// Throws "sampling-failed" located at the most frequent culprit, with counts per reason.
 [[noreturn]] void ThrowSamplingFailure(const RejectionCounts& counts, int64_t attempts) {
   const auto* worst = &*counts.by_culprit.begin();
   for (const auto& entry : counts.by_culprit) {
@@ -34,11 +35,27 @@ namespace {
               " attempts; the most frequent reason was " +
               lang::RejectionKindName(worst->first.first) + ": " + worst->first.second + " (" +
               std::to_string(worst->second) + " times)";
+  if (!example.detail.empty()) {
+    d.notes.push_back({{}, false, "in one such attempt: " + example.detail});
+  }
   for (const auto& [kind, n] : counts.by_kind) {
     d.notes.push_back({{}, false, std::string(lang::RejectionKindName(kind)) + ": " +
                                       std::to_string(n) + " rejections"});
   }
   d.notes.push_back({{}, false, "relax this constraint, or raise the limit with --max-attempts"});
+  throw lang::ScenarioError(std::move(d));
+}
+
+// Throws "sampling-failed" for a rejection that every attempt would repeat.
+[[noreturn]] void ThrowCertainFailure(const lang::Rejection& rejection) {
+  lang::Diagnostic d;
+  d.id = "sampling-failed";
+  d.span = rejection.span;
+  d.message = std::string("every attempt fails the same way (nothing random is drawn before "
+                          "it): ") +
+              lang::RejectionKindName(rejection.kind) + ": " + rejection.culprit;
+  if (!rejection.detail.empty()) d.notes.push_back({{}, false, rejection.detail});
+  d.notes.push_back({{}, false, "change the fixed values so that this constraint can hold"});
   throw lang::ScenarioError(std::move(d));
 }
 
@@ -57,7 +74,10 @@ SampledScene SampleScene(const lang::CompiledProgram& program, uint64_t seed, ui
       result.scene = std::move(*scene);
       return result;
     }
-    result.rejections.Add(std::get<lang::Rejection>(attempt));
+    const lang::Rejection& rejection = std::get<lang::Rejection>(attempt);
+    result.rejections.Add(rejection);
+    // Nothing random ran, so retrying would only repeat this rejection.
+    if (rejection.certain) ThrowCertainFailure(rejection);
   }
   ThrowSamplingFailure(result.rejections, result.attempts);
 }
