@@ -57,9 +57,18 @@ enum class SamplingMode {
   kNaive,   // positions drawn from the workspace; specifiers checked afterwards (paper baseline)
 };
 
+/// Per-thread caches of work that is the same in every scene (the sampler of a position
+/// region built only from fixed values). Opaque; create with MakeRunCache, one per thread.
+class RunCache;
+struct RunCacheDeleter {
+  void operator()(RunCache* cache) const;
+};
+std::unique_ptr<RunCache, RunCacheDeleter> MakeRunCache();
+
 struct RunOptions {
   SamplingMode mode = SamplingMode::kRegion;
   RunLimits limits;
+  RunCache* cache = nullptr;  // optional; never changes the result, only the speed
 };
 
 /// The outcome of one attempt: a scene, or the reason it was rejected.

@@ -61,15 +61,21 @@ namespace {
 
 }  // namespace
 
-SampledScene SampleScene(const lang::CompiledProgram& program, uint64_t seed, uint64_t index,
-                         const SampleOptions& options) {
+SceneSampler::SceneSampler(const lang::CompiledProgram& program, SampleOptions options)
+    : program_(program), options_(std::move(options)), cache_(lang::MakeRunCache()) {}
+
+SceneSampler::~SceneSampler() = default;
+
+SampledScene SceneSampler::Sample(uint64_t seed, uint64_t index) {
   SampledScene result;
   result.seed = seed;
   result.index = index;
   geometry::Rng rng(seed, index);
-  while (result.attempts < options.max_attempts) {
+  lang::RunOptions run = options_.run;
+  run.cache = cache_.get();
+  while (result.attempts < options_.max_attempts) {
     ++result.attempts;
-    lang::AttemptResult attempt = lang::RunAttempt(program, rng, options.run);
+    lang::AttemptResult attempt = lang::RunAttempt(program_, rng, run);
     if (auto* scene = std::get_if<lang::Scene>(&attempt)) {
       result.scene = std::move(*scene);
       return result;
@@ -80,6 +86,11 @@ SampledScene SampleScene(const lang::CompiledProgram& program, uint64_t seed, ui
     if (rejection.certain) ThrowCertainFailure(rejection);
   }
   ThrowSamplingFailure(result.rejections, result.attempts);
+}
+
+SampledScene SampleScene(const lang::CompiledProgram& program, uint64_t seed, uint64_t index,
+                         const SampleOptions& options) {
+  return SceneSampler(program, options).Sample(seed, index);
 }
 
 }  // namespace prs::sampling

@@ -5,6 +5,7 @@
 
 #include <cstdint>
 #include <map>
+#include <memory>
 #include <optional>
 #include <string>
 #include <utility>
@@ -38,8 +39,31 @@ struct SampledScene {
   lang::Scene scene;
 };
 
-/// Samples scene `index` of `seed`. Throws lang::ScenarioError for program errors, and for a
-/// sampling failure after `max_attempts` (naming the most frequent culprit and the counts).
+/// Samples scenes of one program. Holds per-thread caches (regions that are the same in every
+/// scene), so give each thread its own SceneSampler; the program may be shared. The result of
+/// Sample(seed, index) does not depend on the caches, on earlier calls, or on the thread.
+class SceneSampler {
+ public:
+  explicit SceneSampler(const lang::CompiledProgram& program, SampleOptions options = {});
+  ~SceneSampler();
+  SceneSampler(const SceneSampler&) = delete;
+  SceneSampler& operator=(const SceneSampler&) = delete;
+
+  /// Scene `index` of `seed`. Throws lang::ScenarioError for program errors, and for a
+  /// sampling failure after `max_attempts` (naming the most frequent culprit and the counts).
+  SampledScene Sample(uint64_t seed, uint64_t index);
+
+  const lang::CompiledProgram& program() const { return program_; }
+  const SampleOptions& options() const { return options_; }
+
+ private:
+  const lang::CompiledProgram& program_;
+  SampleOptions options_;
+  std::unique_ptr<lang::RunCache, lang::RunCacheDeleter> cache_;
+};
+
+/// Samples scene `index` of `seed` with a fresh SceneSampler (convenient, but without the
+/// caches' speed-up across calls).
 SampledScene SampleScene(const lang::CompiledProgram& program, uint64_t seed, uint64_t index,
                          const SampleOptions& options = {});
 

@@ -1,0 +1,27 @@
+// Per-thread caches for RunAttempt: work that gives the same result in every scene, done once.
+// A RunCache never changes what a run produces, only how fast; it is not thread-safe, so each
+// sampling thread owns one (sampling::SceneSampler does).
+#pragma once
+
+#include <memory>
+#include <unordered_map>
+
+#include "geometry/sampling.h"
+#include "lang/lang.h"
+
+namespace prs::lang {
+
+/// The position sampler of a creation site whose region and obstacles are fixed (see
+/// ObjectPlan::region_fixed): the region minus the fixed obstacles, as disjoint convex pieces.
+struct FixedPlacement {
+  std::vector<geometry::RegionSampler> pieces;
+  std::vector<double> cumulative_measure;  // running sums of the pieces' measures
+  bool empty = false;                      // nothing is left
+};
+
+class RunCache {
+ public:
+  std::unordered_map<const ObjectPlan*, std::shared_ptr<const FixedPlacement>> placements;
+};
+
+}  // namespace prs::lang
