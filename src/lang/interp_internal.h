@@ -11,6 +11,7 @@
 #include "geometry/geometry.h"
 #include "lang/builtins.h"
 #include "lang/lang.h"
+#include "lang/run_cache.h"
 
 namespace prs::lang::internal {
 
@@ -128,6 +129,17 @@ class Interpreter {
   Eigen::Vector3d SampleRegion(const std::vector<PositionConstraint>& constraints,
                                const geometry::ConvexRegion& region,
                                const geometry::ConvexRegion* workspace, int index, SourceSpan span);
+  void CheckBounded(const std::vector<PositionConstraint>& constraints,
+                    const geometry::ConvexRegion& region, int index, SourceSpan span);
+  // --- fixed placements (placement_fixed.cc) ---
+  const FixedPlacement* CachedPlacement(const ObjectPlan& plan) const;
+  Eigen::Vector3d PlaceFixed(const ObjectPlan& plan, const std::vector<PositionConstraint>& constraints,
+                             const geometry::ConvexRegion& region, int index, SourceSpan span);
+  std::shared_ptr<const FixedPlacement> BuildFixedPlacement(
+      const std::vector<PositionConstraint>& constraints, const geometry::ConvexRegion& region,
+      int index, SourceSpan span);
+  std::vector<int> FixedObstacles(int index) const;
+  Eigen::Vector3d SampleFixed(const FixedPlacement& placement);
   Eigen::Vector3d SampleNaive(const std::vector<PositionConstraint>& constraints, int index,
                               SourceSpan span);
   // Why no position fits: the empty specifier with the sizes involved, or every region.

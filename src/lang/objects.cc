@@ -18,6 +18,7 @@ Value Interpreter::CreateObject(const ObjectPlan& plan, SourceSpan span) {
   SceneObject object;
   object.cls = plan.cls;
   object.span = span;
+  object.fixed = plan.object_fixed;
   if (pending_name_) object.name = *pending_name_;
   pending_name_ = nullptr;  // nested creations inside the specifiers stay anonymous
   scene_.objects.push_back(std::move(object));

@@ -67,6 +67,7 @@ std::string DescribeSpecifier(const Specifier& s, const SourceManager& sources) 
 }
 
 Vector3d Interpreter::PlacePosition(const ObjectPlan& plan, int index, SourceSpan span) {
+  if (const FixedPlacement* cached = CachedPlacement(plan)) return SampleFixed(*cached);
   if (plan.position_specifiers.empty()) {
     const PropertyDefault* d = plan.cls->FindDefault("position");
     return ToVector(EvalDefault(*d, index), d->expr ? d->expr->span : span, "the default position");
@@ -95,7 +96,24 @@ Vector3d Interpreter::PlacePosition(const ObjectPlan& plan, int index, SourceSpa
     }
     return c.p_W;
   }
+  CheckBounded(constraints, region, index, span);
+  if (plan.region_fixed) return PlaceFixed(plan, constraints, region, index, span);
   return SampleRegion(constraints, region, workspace, index, span);
+}
+
+void Interpreter::CheckBounded(const std::vector<PositionConstraint>& constraints,
+                               const ConvexRegion& region, int index, SourceSpan span) {
+  if (region.IsEmpty() || region.IsBounded()) return;
+  std::vector<DiagnosticNote> notes;
+  for (const PositionConstraint& c : constraints) {
+    notes.push_back({c.specifier->span, true, "this specifier's region is " + c.region.Describe()});
+  }
+  notes.push_back({{}, false, "add a bounded specifier such as 'on', 'completely on' or 'in', "
+                              "or bind 'workspace' to a bounded region"});
+  Fail(span, "unbounded-region",
+       "the position of this " + scene_.objects[index].cls->name +
+           " is unbounded: its specifiers leave it free to be arbitrarily far away",
+       std::move(notes));
 }
 
 Vector3d Interpreter::SampleRegion(const std::vector<PositionConstraint>& constraints,
@@ -104,18 +122,6 @@ Vector3d Interpreter::SampleRegion(const std::vector<PositionConstraint>& constr
   if (region.IsEmpty()) {
     RejectEmptyRegion(RejectionKind::kEmptyRegion, "no room for " + scene_.objects[index].DisplayName(index),
                       span, constraints, workspace, index, span);
-  }
-  if (!region.IsBounded()) {
-    std::vector<DiagnosticNote> notes;
-    for (const PositionConstraint& c : constraints) {
-      notes.push_back({c.specifier->span, true, "this specifier's region is " + c.region.Describe()});
-    }
-    notes.push_back({{}, false, "add a bounded specifier such as 'on', 'completely on' or 'in', "
-                                "or bind 'workspace' to a bounded region"});
-    Fail(span, "unbounded-region",
-         "the position of this " + scene_.objects[index].cls->name +
-             " is unbounded: its specifiers leave it free to be arbitrarily far away",
-         std::move(notes));
   }
   try {
     return geometry::RegionSampler(region).Sample(rng());

@@ -61,6 +61,12 @@ struct ObjectPlan {
   /// Size and orientation are known before the position, so the workspace (eroded by the
   /// object's box) is folded into the position region instead of being a rejection check.
   bool fold_workspace = false;
+  /// The position region, the object's box and its orientation are the same in every scene
+  /// (a top-level creation from fixed values; see fixed.cc), so fixed obstacles can be cut out
+  /// of the region exactly and the result cached.
+  bool region_fixed = false;
+  /// Every property, the position included, is the same in every scene: a fixed obstacle.
+  bool object_fixed = false;
 };
 
 /// A parsed module (the main file or an imported one).

@@ -191,6 +191,7 @@ bool ResolveProgram(CompiledProgram& program, const std::map<std::string, int>& 
       program.default_plans.emplace(cls.get(), std::move(plan));
     }
   }
+  if (!diagnostics.has_errors()) internal::MarkFixedPlacements(program);
   return !diagnostics.has_errors();
 }
 

@@ -29,6 +29,9 @@ void CheckModule(CompiledProgram& program, int m, DiagnosticEngine& diagnostics)
 bool BuildObjectPlan(const CreateObject& create, const ClassInfo& cls, ObjectPlan& plan,
                      DiagnosticEngine& diagnostics);
 
+/// Marks the creation plans whose region or whole object is the same in every scene.
+void MarkFixedPlacements(CompiledProgram& program);
+
 /// Builds the plan for a class created with no specifiers.
 bool BuildDefaultPlan(const ClassInfo& cls, ObjectPlan& plan, DiagnosticEngine& diagnostics);
 

@@ -16,7 +16,6 @@ namespace prs::lang {
 struct FixedPlacement {
   std::vector<geometry::RegionSampler> pieces;
   std::vector<double> cumulative_measure;  // running sums of the pieces' measures
-  bool empty = false;                      // nothing is left
 };
 
 class RunCache {

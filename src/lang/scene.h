@@ -24,6 +24,7 @@ struct SceneObject {
   Eigen::Quaterniond R_WO = Eigen::Quaterniond::Identity();
   Eigen::Vector3d dimensions = Eigen::Vector3d::Zero();  // width, length, height (0 for points)
   bool allow_collisions = false;
+  bool fixed = false;  // the same in every scene (ObjectPlan::object_fixed)
   /// Every property in definition order, position and orientation included.
   std::vector<std::pair<std::string, Value>> properties;
 

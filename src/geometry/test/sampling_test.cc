@@ -191,7 +191,7 @@ TEST(SamplingTest, MeasureAndDeterminism) {
 
 TEST(SamplingTest, FailuresThrow) {
   Rng rng(107);
-  EXPECT_THROW(RegionSampler(ConvexRegion::Empty()), std::domain_error);
+  EXPECT_THROW(RegionSampler{ConvexRegion::Empty()}, std::domain_error);
   EXPECT_THROW(RegionSampler(ConvexRegion::MakeHalfSpace({0, 0, 0}, {0, 0, 1})), std::domain_error);
   // Two balls meeting in a lens 1e-6 m thick: the bounding-box part is almost all rejected.
   const ConvexRegion lens = Intersect(ConvexRegion::MakeSphere({0, 0, 0}, 1),

@@ -1,0 +1,109 @@
+// Fixed placements: an object whose position region, box and orientation are the same in
+// every scene (ObjectPlan::region_fixed) is placed in its region minus the fixed obstacles
+// placed before it, sampled exactly from disjoint convex pieces. This is exact conditioning
+// (spec §7): the fraction of the region cut away is the same in every scene, so removing it
+// changes no scene's weight, only the number of rejected attempts. The pieces are built once
+// per thread and cached (RunCache); building or reusing them consumes the same random draws.
+#include "geometry/difference.h"
+#include "lang/interp_internal.h"
+
+namespace prs::lang::internal {
+
+using Eigen::Vector3d;
+using geometry::ConvexRegion;
+
+namespace {
+
+// Past this many pieces, further obstacles are left to the collision check (still exact).
+constexpr size_t kMaxPieces = 256;
+
+}  // namespace
+
+const FixedPlacement* Interpreter::CachedPlacement(const ObjectPlan& plan) const {
+  if (!plan.region_fixed || !options_.cache || options_.mode != SamplingMode::kRegion) return nullptr;
+  auto it = options_.cache->placements.find(&plan);
+  return it == options_.cache->placements.end() ? nullptr : it->second.get();
+}
+
+Vector3d Interpreter::PlaceFixed(const ObjectPlan& plan,
+                                 const std::vector<PositionConstraint>& constraints,
+                                 const ConvexRegion& region, int index, SourceSpan span) {
+  std::shared_ptr<const FixedPlacement> placement =
+      BuildFixedPlacement(constraints, region, index, span);
+  if (options_.cache) options_.cache->placements[&plan] = placement;
+  return SampleFixed(*placement);
+}
+
+// Earlier fixed objects this one could collide with.
+std::vector<int> Interpreter::FixedObstacles(int index) const {
+  std::vector<int> obstacles;
+  const SceneObject& o = scene_.objects[index];
+  if (!o.cls->has_box || o.allow_collisions) return obstacles;
+  for (int j = 0; j < index; ++j) {
+    const SceneObject& x = scene_.objects[j];
+    if (completed_[j] && x.fixed && x.cls->has_box && !x.allow_collisions) obstacles.push_back(j);
+  }
+  return obstacles;
+}
+
+std::shared_ptr<const FixedPlacement> Interpreter::BuildFixedPlacement(
+    const std::vector<PositionConstraint>& constraints, const ConvexRegion& region, int index,
+    SourceSpan span) {
+  if (region.IsEmpty()) {
+    // Everything involved is fixed, so every scene would fail the same way.
+    throw ScenarioError(ExplainEmptyRegion(constraints, Workspace(), index, span));
+  }
+  std::vector<ConvexRegion> pieces{region};
+  std::vector<int> cut;
+  // Balls have no exact measure for weighting pieces: leave obstacles to the collision check.
+  const std::vector<int> obstacles = region.balls().empty() ? FixedObstacles(index) : std::vector<int>{};
+  const geometry::OrientedBox box = BoxOf(index);
+  for (int j : obstacles) {
+    const ConvexRegion forbidden = geometry::CalcBoxOverlapRegion(BoxOf(j), box.R_WB, box.half_extents);
+    std::vector<ConvexRegion> next;
+    bool overlaps = false;
+    for (const ConvexRegion& piece : pieces) {
+      const ConvexRegion common = geometry::Intersect(piece, forbidden);
+      if (common.IsEmpty() || common.dimension() < piece.dimension()) {
+        next.push_back(piece);
+        continue;
+      }
+      overlaps = true;
+      for (ConvexRegion& part : geometry::CalcRegionDifference(piece, forbidden)) {
+        next.push_back(std::move(part));
+      }
+    }
+    if (next.size() > kMaxPieces) break;
+    if (overlaps) cut.push_back(j);
+    pieces = std::move(next);
+    if (pieces.empty()) break;
+  }
+  if (pieces.empty()) {
+    std::string names;
+    for (int j : cut) names += (names.empty() ? "" : ", ") + scene_.objects[j].DisplayName(j);
+    Fail(span, "empty-region",
+         "every position that satisfies the specifiers of this " + scene_.objects[index].cls->name +
+             " collides with " + names + ", which " + (cut.size() == 1 ? "is" : "are") +
+             " the same in every scene",
+         {{{}, false, "move the object's region or those objects apart"}});
+  }
+  auto placement = std::make_shared<FixedPlacement>();
+  double total = 0;
+  for (const ConvexRegion& piece : pieces) {
+    placement->pieces.emplace_back(piece);
+    total += pieces.size() == 1 ? 1.0 : placement->pieces.back().measure();
+    placement->cumulative_measure.push_back(total);
+  }
+  return placement;
+}
+
+Vector3d Interpreter::SampleFixed(const FixedPlacement& placement) {
+  size_t i = 0;
+  if (placement.pieces.size() > 1) {
+    const double u = DrawUniform(0, placement.cumulative_measure.back());
+    while (i + 1 < placement.pieces.size() && u >= placement.cumulative_measure[i]) ++i;
+  }
+  return placement.pieces[i].Sample(rng());
+}
+
+}  // namespace prs::lang::internal
