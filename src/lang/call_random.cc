@@ -75,6 +75,10 @@ void Interpreter::CheckWholeNumbers(const std::vector<Value>& args,
                                     const std::vector<SourceSpan>& spans) {
   for (size_t i = 0; i < 2; ++i) {
     const double x = args[i].As<double>();
+    if (std::abs(x) > 9007199254740992.0) {  // 2^53: beyond it, not every integer exists
+      Fail(spans[i], "bad-value", "DiscreteRange's bounds must be within ±2^53, got " +
+                                      FormatNumber(x));
+    }
     if (x != std::trunc(x)) {
       Fail(spans[i], "bad-value",
            "DiscreteRange's bounds must be whole numbers, got " + FormatNumber(x),

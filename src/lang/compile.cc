@@ -1,6 +1,7 @@
 // The compiler driver: reads the main file, loads `from NAME import *` modules (searching the
 // importing file's directory, then the search path; cycles are errors), parses everything, and
 // hands the modules to the resolver, which builds the class table and creation plans.
+#include <algorithm>
 #include <filesystem>
 #include <fstream>
 #include <sstream>
@@ -147,6 +148,41 @@ class ModuleLoader {
   std::map<std::string, int> loaded_;
 };
 
+// Adds the names declared by `param` statements anywhere in `body` (blocks and functions too).
+void CollectParamNames(const std::vector<StmtPtr>& body, std::vector<std::string>& names) {
+  for (const StmtPtr& stmt : body) {
+    if (const auto* param = std::get_if<ParamStmt>(&stmt->node)) {
+      for (const auto& [name, value] : param->params) names.push_back(name.name);
+    } else if (const auto* node = std::get_if<IfStmt>(&stmt->node)) {
+      for (const auto& [condition, branch] : node->branches) CollectParamNames(branch, names);
+      CollectParamNames(node->else_body, names);
+    } else if (const auto* loop = std::get_if<ForStmt>(&stmt->node)) {
+      CollectParamNames(loop->body, names);
+    } else if (const auto* loop = std::get_if<WhileStmt>(&stmt->node)) {
+      CollectParamNames(loop->body, names);
+    } else if (const auto* function = std::get_if<FunctionDef>(&stmt->node)) {
+      CollectParamNames(function->body, names);
+    }
+  }
+}
+
+// A `-p NAME=VALUE` for a NAME no `param` declares is almost always a typo: say so.
+void CheckParamOverrides(const CompiledProgram& program, const CompileOptions& options,
+                         DiagnosticEngine& diagnostics) {
+  std::vector<std::string> declared;
+  for (const auto& module : program.modules) CollectParamNames(module->ast.body, declared);
+  for (const auto& [name, value] : options.param_overrides) {
+    if (std::find(declared.begin(), declared.end(), name) != declared.end()) continue;
+    Diagnostic d;
+    d.id = "unknown-param";
+    d.has_span = false;
+    d.message = "-p " + name + "=" + value + ": the program declares no param '" + name + "'";
+    const std::string suggestion = SuggestClosest(name, declared);
+    if (!suggestion.empty()) d.message += "; did you mean '" + suggestion + "'?";
+    diagnostics.Report(std::move(d));
+  }
+}
+
 }  // namespace
 
 const FileSystem& RealFileSystem() {
@@ -162,6 +198,7 @@ std::unique_ptr<CompiledProgram> CompileText(const std::string& path, std::strin
   program->main_module = loader.LoadModule(path, path, std::move(text));
   for (const auto& [name, value] : options.param_overrides) program->param_overrides[name] = value;
   if (!diagnostics.has_errors()) ResolveProgram(*program, loader.loaded(), diagnostics);
+  if (!diagnostics.has_errors()) CheckParamOverrides(*program, options, diagnostics);
   return program;
 }
 

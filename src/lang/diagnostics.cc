@@ -217,6 +217,7 @@ const std::vector<DiagnosticKind>& DiagnosticCatalogue() {
       // ---- resolver / interpreter (appended by those stages) ------------------
       {"file-not-found", "compiler", "the main file cannot be read"},
       {"module-not-found", "compiler", "`from NAME import *` finds no NAME.prs on the search path"},
+      {"unknown-param", "compiler", "`-p NAME=VALUE` for a NAME no `param` statement declares"},
       {"import-cycle", "compiler", "modules that import each other, directly or not"},
       {"unknown-name", "resolver", "a name that is never bound (with the closest bound name)"},
       {"unknown-module", "resolver", "`import NAME` of a module other than `math`"},

@@ -27,6 +27,18 @@ std::string OperatorName(BinaryOp op) { return "'" + std::string(BinaryOpName(op
 
 Value Interpreter::EvalBinary(BinaryOp op, const Value& a, const Value& b, SourceSpan span) {
   if (op >= BinaryOp::kEq) return EvalCompare(op, a, b, span);
+  Value result = EvalArithmetic(op, a, b, span);
+  // An overflow would otherwise travel on as inf or nan into regions and rotations.
+  const bool finite = result.Is<double>()            ? std::isfinite(result.As<double>())
+                      : result.Is<Eigen::Vector3d>() ? result.As<Eigen::Vector3d>().allFinite()
+                                                     : true;
+  if (!finite) {
+    Fail(span, "bad-value", "the result of " + OperatorName(op) + " is not a finite number");
+  }
+  return result;
+}
+
+Value Interpreter::EvalArithmetic(BinaryOp op, const Value& a, const Value& b, SourceSpan span) {
   const bool a_vec = IsVectorLike(a), b_vec = IsVectorLike(b);
   if ((op == BinaryOp::kAdd || op == BinaryOp::kSub) && a_vec && b_vec) {
     const Vector3d va = ToVector(a, span, "the left operand"), vb = ToVector(b, span, "");
@@ -59,11 +71,7 @@ Value Interpreter::EvalBinary(BinaryOp op, const Value& a, const Value& b, Sourc
     case BinaryOp::kAdd: return x + y;
     case BinaryOp::kSub: return x - y;
     case BinaryOp::kMul: return x * y;
-    case BinaryOp::kPow: {
-      const double r = std::pow(x, y);
-      if (!std::isfinite(r)) Fail(span, "bad-value", "this power is not a finite number");
-      return r;
-    }
+    case BinaryOp::kPow: return std::pow(x, y);
     default: break;
   }
   if (y == 0) Fail(span, "bad-value", "division by zero");

@@ -1,6 +1,7 @@
 // The interpreter's statement layer: runs modules (imports once per attempt), binds names,
 // executes control flow within the run limits, and turns requirements into rejections.
 #include <cmath>
+#include <stdexcept>
 
 #include "lang/interp_internal.h"
 #include "lang/run_cache.h"
@@ -40,6 +41,11 @@ AttemptResult Interpreter::Run() {
   } catch (RejectSignal& signal) {
     signal.rejection.certain = draws_ == 0;
     return std::move(signal.rejection);
+  } catch (const std::logic_error& e) {
+    // A geometry constructor refused a value no check caught earlier (e.g. a huge number):
+    // still a located error, never an abort.
+    Fail(current_statement_, "bad-value", std::string("this statement computes a value the "
+                                                      "geometry cannot use: ") + e.what());
   }
   return std::move(scene_);
 }
@@ -62,6 +68,7 @@ Flow Interpreter::ExecBody(const std::vector<StmtPtr>& body) {
 }
 
 Flow Interpreter::Exec(const Stmt& stmt) {
+  current_statement_ = stmt.span;
   if (const auto* node = std::get_if<ExprStmt>(&stmt.node)) {
     EvalStatementValue(*node->expr);
   } else if (const auto* node = std::get_if<AssignStmt>(&stmt.node)) {

@@ -79,6 +79,7 @@ class Interpreter {
 
   // --- expressions (eval.cc) ---
   Value EvalBinary(BinaryOp op, const Value& a, const Value& b, SourceSpan span);
+  Value EvalArithmetic(BinaryOp op, const Value& a, const Value& b, SourceSpan span);
   Value EvalCompare(BinaryOp op, const Value& a, const Value& b, SourceSpan span);
   Value EvalAttribute(const Value& object, const Identifier& attribute, SourceSpan span);
   Value EvalIndex(const Value& object, const Value& index, SourceSpan span);
@@ -167,6 +168,7 @@ class Interpreter {
   // The variable a statement `NAME = Class ...` binds, so the object carries its name
   // (in rejection messages) while it is still being placed. Consumed by CreateObject.
   const std::string* pending_name_ = nullptr;
+  SourceSpan current_statement_;  // for errors raised below the statement layer
   int self_index_ = -1;              // the object whose defaults are being evaluated
   int call_depth_ = 0;
   int64_t loop_iterations_ = 0;

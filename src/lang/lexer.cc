@@ -5,6 +5,9 @@
 #include <fmt/format.h>
 
 #include <charconv>
+#include <cmath>
+#include <cstdlib>
+#include <string>
 #include <unordered_map>
 
 namespace prs::lang {
@@ -242,7 +245,7 @@ void Lexer::LexName() {
 
 void Lexer::LexNumber() {
   size_t begin = pos_;
-  bool bad = false;
+  bool bad = false, too_large = false;
   double value = 0;
   if (Peek() == '0' && std::string_view("xXoObB").find(Peek(1)) != std::string_view::npos &&
       Peek(1) != '\0') {
@@ -267,7 +270,13 @@ void Lexer::LexNumber() {
       while (IsDigit(Peek())) ++pos_;
     }
     auto r = std::from_chars(text_.data() + begin, text_.data() + pos_, value);
-    if (r.ec != std::errc() && r.ec != std::errc::result_out_of_range) bad = true;
+    if (r.ec == std::errc::result_out_of_range) {
+      // Too small underflows to 0 harmlessly; too large would be infinite.
+      value = std::strtod(std::string(text_.substr(begin, pos_ - begin)).c_str(), nullptr);
+      if (!std::isfinite(value)) too_large = true;
+    } else if (r.ec != std::errc()) {
+      bad = true;
+    }
   }
   // A number running straight into letters or a second '.' ("1abc", "1.2.3") is malformed.
   while (!AtEnd() && (IsNameChar(Peek()) || (Peek() == '.' && IsDigit(Peek(1))))) {
@@ -277,6 +286,11 @@ void Lexer::LexNumber() {
   if (bad) {
     diags_.Error("invalid-number", Span(begin, pos_),
                  fmt::format("invalid number literal '{}'", text_.substr(begin, pos_ - begin)));
+  } else if (too_large) {
+    diags_.Error("invalid-number", Span(begin, pos_),
+                 fmt::format("number literal '{}' is too large (the largest is about 1.8e308)",
+                             text_.substr(begin, pos_ - begin)));
+    value = 0;
   }
   Emit(TokenKind::kNumber, begin, pos_);
   tokens_.back().number = value;

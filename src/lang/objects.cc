@@ -103,6 +103,11 @@ void Interpreter::SetOrientation(const PlanStep& step, int index) {
   const Eigen::Matrix3d R_local =
       geometry::CalcRotationFromYawPitchRoll(angle("yaw"), angle("pitch"), angle("roll"));
   const Eigen::Quaterniond R_WO(R_base.toRotationMatrix() * R_local);
+  if (!R_WO.coeffs().allFinite()) {
+    // Only reachable through extreme coordinates whose differences overflow.
+    Fail(s ? s->span : scene_.objects[index].span, "bad-value",
+         "this orientation cannot be computed: its inputs are too large to be finite");
+  }
   scene_.objects[index].R_WO = R_WO.normalized();
   SetProperty(index, "orientation", Orientation{scene_.objects[index].R_WO},
               scene_.objects[index].span);

@@ -195,13 +195,16 @@ void Parser::ParseStatementsUntilDedent(std::vector<StmtPtr>* out) {
 }
 
 void Parser::ParseSimpleStatements(std::vector<StmtPtr>* out) {
-  out->push_back(ParseSimpleStatement());
+  // A docstring parses to null (it is dropped), wherever it stands on the line.
+  auto add = [out](StmtPtr stmt) {
+    if (stmt) out->push_back(std::move(stmt));
+  };
+  add(ParseSimpleStatement());
   while (Match(TK::kSemicolon)) {
     if (Check(TK::kNewline) || Check(TK::kEndOfFile)) break;
-    out->push_back(ParseSimpleStatement());
+    add(ParseSimpleStatement());
   }
   ExpectStatementEnd();
-  if (!out->empty() && out->back() == nullptr) out->pop_back();  // a dropped docstring
 }
 
 void Parser::ExpectStatementEnd() {

@@ -86,16 +86,22 @@ Vector3d Interpreter::PlacePosition(const ObjectPlan& plan, int index, SourceSpa
   for (const PositionConstraint& c : constraints) {
     if (!c.is_point) region = geometry::Intersect(region, c.region);
   }
+  const PositionConstraint* point = nullptr;
   for (const PositionConstraint& c : constraints) {
     if (!c.is_point) continue;
-    if (!region.Contains(c.p_W, 1e-9)) {
+    if (!point) point = &c;  // every other point, and every region, must hold it
+    if (!region.Contains(c.p_W, 1e-9) || (c.p_W - point->p_W).norm() > 1e-9) {
       RejectEmptyRegion(RejectionKind::kOutsideRegion,
                         scene_.objects[index].DisplayName(index) + " " +
                             DescribeSpecifier(*c.specifier, program_.sources),
                         c.specifier->span, constraints, workspace, index, span);
     }
-    return c.p_W;
   }
+  if (point) return point->p_W;
+  // Without folding (no box, or an orientation that depends on the position), the centre
+  // must still lie in the workspace: bounding the region by it is exact, as the workspace
+  // check at the end of the scene rejects every centre outside it anyway.
+  if (!workspace && Workspace()) region = geometry::Intersect(region, *Workspace());
   CheckBounded(constraints, region, index, span);
   if (plan.region_fixed) return PlaceFixed(plan, constraints, region, index, span);
   return SampleRegion(constraints, region, workspace, index, span);
@@ -259,8 +265,11 @@ Diagnostic Interpreter::ExplainEmptyRegion(const std::vector<PositionConstraint>
       d.span = c.specifier->span;
       d.message = DescribeSpecifier(*c.specifier, program_.sources) + " leaves no room for this " +
                   o.cls->name;
-      if (c.specifier->kind == SpecifierKind::kCompletelyOn) d.message += DescribeFootprintMismatch(c, o);
-      d.notes = {{{}, false, "make the object smaller or the surface larger, or use 'on' to allow overhang"}};
+      if (c.specifier->kind == SpecifierKind::kCompletelyOn) {
+        d.message += DescribeFootprintMismatch(c, o);
+        d.notes = {{{}, false, "make the object smaller or the surface larger, or use 'on' to "
+                               "allow overhang"}};
+      }
       return d;
     }
     std::string kind = c.is_point ? "the point (" + Format(c.p_W.x()) + ", " + Format(c.p_W.y()) +
@@ -269,7 +278,8 @@ Diagnostic Interpreter::ExplainEmptyRegion(const std::vector<PositionConstraint>
     d.notes.push_back({c.specifier->span, true, "this specifier gives " + kind});
   }
   if (workspace) {
-    d.notes.push_back({{}, false, "the workspace (shrunk by the object's size) is " + workspace->Describe()});
+    d.notes.push_back({{}, false, "the workspace is " + workspace->Describe() +
+                                      ", and the object's whole box must fit inside it"});
   }
   d.notes.push_back({{}, false, "these regions do not overlap; loosen one of them"});
   return d;

@@ -71,6 +71,17 @@ constexpr const char* kFigure1 =
     "              (1.9, 2.1)),\n"
     "       facing V3D(0, 0, -1)\n";
 
+// A docstring is dropped wherever it stands among `;`-separated statements (this crashed).
+TEST(ParserTest, DocstringBeforeSemicolonIsDropped) {
+  auto r = ParseText("\"doc\"; x = 1\nif True:\n    \"doc\"; y = 2; \"more\"\n");
+  EXPECT_EQ(Errors(*r), "");
+  ASSERT_EQ(r->module.body.size(), 2u);
+  for (const StmtPtr& stmt : r->module.body) EXPECT_NE(stmt, nullptr);
+  const auto& branch = std::get<IfStmt>(r->module.body[1]->node).branches[0].second;
+  ASSERT_EQ(branch.size(), 1u);
+  EXPECT_NE(branch[0], nullptr);
+}
+
 TEST(ParserTest, PaperFigure1) {
   auto r = ParseText(std::string("from model import *\n") + kFigure1);
   ASSERT_EQ(Errors(*r), "");

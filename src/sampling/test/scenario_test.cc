@@ -97,6 +97,18 @@ TEST(ScenarioTest, SameSeedAndIndexGiveTheSameScene) {
   EXPECT_EQ(a.params[0].second.As<double>(), b.params[0].second.As<double>());
 }
 
+TEST(ScenarioTest, ParamOverrideForAnUndeclaredNameIsAnError) {
+  lang::DiagnosticEngine diagnostics;
+  lang::CompileOptions options;
+  options.param_overrides = {{"clutter", "3"}, {"lable", "x"}};
+  lang::CompileText(RepoPath("examples/test.prs"), "param clutter = 2, label = \"a\"\n", options,
+                    diagnostics);
+  ASSERT_EQ(diagnostics.diagnostics().size(), 1u);
+  EXPECT_EQ(diagnostics.diagnostics()[0].id, "unknown-param");
+  EXPECT_EQ(diagnostics.diagnostics()[0].message,
+            "-p lable=x: the program declares no param 'lable'; did you mean 'label'?");
+}
+
 TEST(ScenarioTest, ConstructsExampleRuns) {
   lang::DiagnosticEngine diagnostics;
   auto program = lang::CompileFile(RepoPath("examples/constructs.prs"), {}, diagnostics);

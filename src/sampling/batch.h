@@ -1,0 +1,66 @@
+// Many scenes at once: scenes start..start+count-1 of one seed sampled by worker threads, each
+// with its own SceneSampler, and handed back in index order through a bounded reorder window,
+// so the output is the same for any thread count and memory does not grow with `count`.
+#pragma once
+
+#include <atomic>
+#include <cstdint>
+#include <functional>
+#include <stdexcept>
+#include <string>
+
+#include "sampling/sampler.h"
+
+namespace prs::sampling {
+
+struct BatchOptions {
+  SampleOptions sample;
+  uint64_t seed = 0;
+  uint64_t start = 0;  // index of the first scene
+  int64_t count = 0;   // number of scenes; start + count - 1 must not overflow uint64_t
+  int threads = 1;     // worker threads; 1 samples on the calling thread
+  /// Scenes that may be finished ahead of the next one to hand back, per thread. Bounds memory.
+  int window_per_thread = 32;
+  /// Polled about every 50 ms and between scenes; once true, the batch stops (BatchCancelled).
+  const std::atomic<bool>* cancel = nullptr;
+};
+
+/// One scene of a batch, with room for a caller's per-scene result computed on the worker.
+struct BatchScene {
+  SampledScene sampled;
+  std::string rendered;  // filled by BatchCallbacks::prepare, if the caller gives one
+};
+
+struct BatchCallbacks {
+  /// Optional. Runs on a worker thread right after a scene is sampled, in no particular
+  /// order: per-scene work that should run in parallel (e.g. formatting it as JSON).
+  std::function<void(BatchScene&)> prepare;
+  /// Runs on the calling thread, once per scene, in index order.
+  std::function<void(BatchScene&&)> consume;
+};
+
+/// Totals over the scenes handed to `consume`.
+struct BatchSummary {
+  int64_t scenes = 0;
+  int64_t attempts = 0;
+  RejectionCounts rejections;
+
+  void Add(const SampledScene& sampled);
+};
+
+/// Thrown by SampleBatch when BatchOptions::cancel became true.
+class BatchCancelled : public std::runtime_error {
+ public:
+  BatchCancelled() : std::runtime_error("the batch was cancelled") {}
+};
+
+/// Samples scenes start..start+count-1 of `seed` and hands each to `callbacks.consume` in index
+/// order. Scene i is SceneSampler::Sample(seed, i), so the scenes do not depend on `threads`.
+/// If scenes fail, every scene before the lowest failing index is consumed, the workers stop,
+/// and the exception of that lowest index is rethrown (lang::ScenarioError, or whatever
+/// `prepare` threw). An exception from `consume` stops the workers and propagates.
+/// Throws std::invalid_argument for count < 0, threads < 1 or an index range past 2^64 - 1.
+BatchSummary SampleBatch(const lang::CompiledProgram& program, const BatchOptions& options,
+                         const BatchCallbacks& callbacks);
+
+}  // namespace prs::sampling

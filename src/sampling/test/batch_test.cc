@@ -1,0 +1,231 @@
+// The batch sampler: the same scenes for any thread count and any split of the index range,
+// totals that add up, the lowest failing index reported after the scenes before it, a bounded
+// window of scenes in flight, and cancellation.
+#include "sampling/batch.h"
+
+#include <gtest/gtest.h>
+
+#include <atomic>
+#include <chrono>
+#include <cstdio>
+#include <string>
+#include <thread>
+#include <vector>
+
+#include "sampling/test/scene_checks.h"
+
+namespace prs::sampling {
+namespace {
+
+using testing_checks::CompileOrDie;
+using testing_checks::RepoPath;
+
+std::unique_ptr<lang::CompiledProgram> CompileTableCube() {
+  lang::DiagnosticEngine diagnostics;
+  lang::CompileOptions options;
+  options.search_path = {RepoPath("examples")};
+  auto program = lang::CompileFile(RepoPath("examples/table_cube.prs"), options, diagnostics);
+  EXPECT_FALSE(diagnostics.has_errors());
+  return program;
+}
+
+// Every number of a scene, exactly (hex floats), so equal fingerprints mean equal scenes.
+std::string Fingerprint(const SampledScene& sampled) {
+  std::string text = std::to_string(sampled.index) + " " + std::to_string(sampled.attempts);
+  char buffer[64];
+  for (const lang::SceneObject& o : sampled.scene.objects) {
+    text += " " + o.cls->name + ":" + o.name.value_or("-");
+    const double numbers[] = {o.p_WO.x(),   o.p_WO.y(),   o.p_WO.z(),         o.R_WO.w(),
+                              o.R_WO.x(),   o.R_WO.y(),   o.R_WO.z(),         o.dimensions.x(),
+                              o.dimensions.y(), o.dimensions.z()};
+    for (double x : numbers) {
+      std::snprintf(buffer, sizeof buffer, " %a", x);
+      text += buffer;
+    }
+  }
+  for (const auto& [key, n] : sampled.rejections.by_culprit) {
+    text += " " + std::string(lang::RejectionKindName(key.first)) + "/" + key.second + "=" +
+            std::to_string(n);
+  }
+  return text;
+}
+
+std::vector<std::string> SampleFingerprints(const lang::CompiledProgram& program, uint64_t start,
+                                            int64_t count, int threads) {
+  BatchOptions options;
+  options.seed = 7;
+  options.start = start;
+  options.count = count;
+  options.threads = threads;
+  std::vector<std::string> fingerprints;
+  SampleBatch(program, options, {.consume = [&](BatchScene&& scene) {
+                fingerprints.push_back(Fingerprint(scene.sampled));
+              }});
+  return fingerprints;
+}
+
+TEST(BatchTest, SameScenesForAnyThreadCount) {
+  auto program = CompileTableCube();
+  ASSERT_NE(program, nullptr);
+  const std::vector<std::string> one = SampleFingerprints(*program, 0, 40, 1);
+  ASSERT_EQ(one.size(), 40u);
+  EXPECT_EQ(SampleFingerprints(*program, 0, 40, 2), one);
+  EXPECT_EQ(SampleFingerprints(*program, 0, 40, 4), one);
+}
+
+TEST(BatchTest, SameScenesForAnySplitOfTheRange) {
+  auto program = CompileTableCube();
+  ASSERT_NE(program, nullptr);
+  const std::vector<std::string> whole = SampleFingerprints(*program, 0, 10, 2);
+  std::vector<std::string> split = SampleFingerprints(*program, 0, 4, 1);
+  const std::vector<std::string> rest = SampleFingerprints(*program, 4, 6, 4);
+  split.insert(split.end(), rest.begin(), rest.end());
+  EXPECT_EQ(split, whole);
+}
+
+TEST(BatchTest, SummaryAddsUpOverTheScenes) {
+  auto program = CompileTableCube();
+  ASSERT_NE(program, nullptr);
+  BatchOptions options;
+  options.seed = 3;
+  options.count = 50;
+  options.threads = 2;
+  RejectionCounts summed;
+  int64_t attempts = 0;
+  const BatchSummary summary =
+      SampleBatch(*program, options, {.consume = [&](BatchScene&& scene) {
+                    summed.Merge(scene.sampled.rejections);
+                    attempts += scene.sampled.attempts;
+                  }});
+  EXPECT_EQ(summary.scenes, 50);
+  EXPECT_EQ(summary.attempts, attempts);
+  EXPECT_EQ(summary.rejections.total, summed.total);
+  EXPECT_EQ(summary.rejections.by_kind, summed.by_kind);
+  EXPECT_EQ(summary.rejections.by_culprit, summed.by_culprit);
+  EXPECT_EQ(summary.attempts, summary.scenes + summary.rejections.total);
+  int64_t by_kind_total = 0;
+  for (const auto& [kind, n] : summary.rejections.by_kind) by_kind_total += n;
+  EXPECT_EQ(by_kind_total, summary.rejections.total);
+}
+
+// Scenes 7 and 12 fail in `prepare`; whatever the threads, 0..6 arrive and 7's error is thrown.
+TEST(BatchTest, ReportsTheLowestFailingIndexAfterTheScenesBeforeIt) {
+  auto program = CompileTableCube();
+  ASSERT_NE(program, nullptr);
+  for (int threads : {1, 2, 4}) {
+    BatchOptions options;
+    options.count = 30;
+    options.threads = threads;
+    std::vector<uint64_t> consumed;
+    BatchCallbacks callbacks;
+    callbacks.prepare = [](BatchScene& scene) {
+      if (scene.sampled.index == 7 || scene.sampled.index == 12) {
+        throw std::runtime_error("scene " + std::to_string(scene.sampled.index));
+      }
+    };
+    callbacks.consume = [&](BatchScene&& scene) { consumed.push_back(scene.sampled.index); };
+    try {
+      SampleBatch(*program, options, callbacks);
+      ADD_FAILURE() << "no error with " << threads << " threads";
+    } catch (const std::runtime_error& error) {
+      EXPECT_STREQ(error.what(), "scene 7") << threads << " threads";
+    }
+    EXPECT_EQ(consumed, (std::vector<uint64_t>{0, 1, 2, 3, 4, 5, 6})) << threads << " threads";
+  }
+}
+
+// Some scenes of this program fail within 2 attempts and others do not; the first failure and
+// the scenes before it are the same for every thread count.
+TEST(BatchTest, SamplingFailureIsTheSameForAnyThreadCount) {
+  auto program = CompileOrDie("x = Range(0, 1)\nrequire x > 0.8\n");
+  ASSERT_NE(program, nullptr);
+  auto run = [&](int threads) {
+    BatchOptions options;
+    options.sample.max_attempts = 2;
+    options.count = 100;
+    options.threads = threads;
+    int64_t consumed = 0;
+    try {
+      SampleBatch(*program, options, {.consume = [&](BatchScene&&) { ++consumed; }});
+    } catch (const lang::ScenarioError& error) {
+      EXPECT_EQ(error.diagnostic().id, "sampling-failed");
+      return std::to_string(consumed) + " " + error.diagnostic().message;
+    }
+    return std::string("no failure");
+  };
+  const std::string serial = run(1);
+  EXPECT_NE(serial, "no failure");
+  EXPECT_EQ(run(2), serial);
+  EXPECT_EQ(run(4), serial);
+}
+
+TEST(BatchTest, KeepsAtMostTheWindowOfScenesInFlight) {
+  auto program = CompileTableCube();
+  ASSERT_NE(program, nullptr);
+  BatchOptions options;
+  options.count = 60;
+  options.threads = 2;
+  options.window_per_thread = 3;
+  std::atomic<int64_t> prepared = 0, consumed = 0, worst_in_flight = 0;
+  BatchCallbacks callbacks;
+  callbacks.prepare = [&](BatchScene&) {
+    const int64_t in_flight = ++prepared - consumed.load();
+    int64_t worst = worst_in_flight.load();
+    while (in_flight > worst && !worst_in_flight.compare_exchange_weak(worst, in_flight)) {
+    }
+  };
+  callbacks.consume = [&](BatchScene&&) {
+    std::this_thread::sleep_for(std::chrono::microseconds(500));  // a slow writer
+    ++consumed;
+  };
+  SampleBatch(*program, options, callbacks);
+  EXPECT_EQ(consumed.load(), 60);
+  // The window (6) plus the scene the consumer has taken but not yet counted.
+  EXPECT_LE(worst_in_flight.load(), 7);
+}
+
+TEST(BatchTest, StopsWhenCancelled) {
+  auto program = CompileTableCube();
+  ASSERT_NE(program, nullptr);
+  for (int threads : {1, 2}) {
+    std::atomic<bool> cancel = false;
+    BatchOptions options;
+    options.count = 1000;
+    options.threads = threads;
+    options.cancel = &cancel;
+    int64_t consumed = 0;
+    EXPECT_THROW(SampleBatch(*program, options, {.consume = [&](BatchScene&&) {
+                               if (++consumed == 5) cancel = true;
+                             }}),
+                 BatchCancelled);
+    EXPECT_EQ(consumed, 5) << threads << " threads";
+  }
+}
+
+TEST(BatchTest, RejectsBadArguments) {
+  auto program = CompileTableCube();
+  ASSERT_NE(program, nullptr);
+  BatchOptions options;
+  options.count = -1;
+  EXPECT_THROW(SampleBatch(*program, options, {}), std::invalid_argument);
+  options.count = 2;
+  options.threads = 0;
+  EXPECT_THROW(SampleBatch(*program, options, {}), std::invalid_argument);
+  options.threads = 1;
+  options.start = UINT64_MAX;
+  EXPECT_THROW(SampleBatch(*program, options, {}), std::invalid_argument);
+}
+
+TEST(BatchTest, EmptyBatchConsumesNothing) {
+  auto program = CompileTableCube();
+  ASSERT_NE(program, nullptr);
+  BatchOptions options;
+  options.threads = 4;
+  const BatchSummary summary = SampleBatch(*program, options, {.consume = [](BatchScene&&) {
+                                             ADD_FAILURE() << "consumed a scene";
+                                           }});
+  EXPECT_EQ(summary.scenes, 0);
+}
+
+}  // namespace
+}  // namespace prs::sampling
