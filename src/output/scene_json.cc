@@ -1,7 +1,12 @@
-// Writes scenes as spec §8 JSON with nlohmann-json: objects in creation order, quaternions
-// (w, x, y, z) mapping local to world, yaw/pitch/roll, dimensions, and the other properties.
+// Writes scenes as spec §8 JSON, keys in the order the spec lists them: objects in creation
+// order, quaternions (w, x, y, z) mapping local to world, yaw/pitch/roll, dimensions, and the
+// other properties in definition order. Written directly with fmt (this is the hot path of
+// `prs sample`); strings that need escaping go through nlohmann-json.
 #include "output/scene_json.h"
 
+#include <fmt/format.h>
+
+#include <cmath>
 #include <nlohmann/json.hpp>
 
 #include "geometry/rotation.h"
@@ -9,22 +14,84 @@
 namespace prs::output {
 namespace {
 
-using nlohmann::json;
+using Out = std::string;
 
-json ValueToJson(const lang::Value& v) {
-  if (const auto* x = std::get_if<double>(&v.data)) return *x;
-  if (const auto* b = std::get_if<bool>(&v.data)) return *b;
-  if (const auto* s = std::get_if<lang::StringPtr>(&v.data)) return **s;
-  if (const auto* p = std::get_if<Eigen::Vector3d>(&v.data)) return {p->x(), p->y(), p->z()};
-  if (v.Is<lang::NoneValue>()) return nullptr;
-  auto elements = [](const std::vector<lang::Value>& items) {
-    json array = json::array();
-    for (const lang::Value& item : items) array.push_back(ValueToJson(item));
-    return array;
-  };
-  if (const auto* t = std::get_if<std::shared_ptr<lang::TupleData>>(&v.data)) return elements((*t)->elements);
-  if (const auto* l = std::get_if<std::shared_ptr<lang::ListData>>(&v.data)) return elements((*l)->elements);
-  return lang::Repr(v);
+// Shortest round-trip digits; integral values keep a ".0" so readers see a float, and
+// non-finite values (never produced for positions) become null as JSON has no spelling for them.
+void AppendNumber(double x, Out& out) {
+  if (!std::isfinite(x)) {
+    out += "null";
+    return;
+  }
+  const size_t begin = out.size();
+  fmt::format_to(std::back_inserter(out), "{}", x);
+  if (out.find_first_of(".e", begin) == std::string::npos) out += ".0";
+}
+
+bool IsPlainAscii(std::string_view s) {
+  for (const char c : s) {
+    if (c < 0x20 || c == 0x7f || c == '"' || c == '\\' || static_cast<unsigned char>(c) >= 0x80) {
+      return false;
+    }
+  }
+  return true;
+}
+
+// Escapes as JSON requires; invalid UTF-8 is replaced by U+FFFD rather than failing.
+void AppendString(std::string_view s, Out& out) {
+  if (IsPlainAscii(s)) {
+    out += '"';
+    out += s;
+    out += '"';
+    return;
+  }
+  out +=
+      nlohmann::json(std::string(s)).dump(-1, ' ', false, nlohmann::json::error_handler_t::replace);
+}
+
+void AppendNumbers(std::initializer_list<double> numbers, Out& out) {
+  out += '[';
+  bool first = true;
+  for (const double x : numbers) {
+    if (!first) out += ',';
+    first = false;
+    AppendNumber(x, out);
+  }
+  out += ']';
+}
+
+void AppendValue(const lang::Value& v, Out& out);
+
+void AppendElements(const std::vector<lang::Value>& items, Out& out) {
+  out += '[';
+  for (size_t i = 0; i < items.size(); ++i) {
+    if (i > 0) out += ',';
+    AppendValue(items[i], out);
+  }
+  out += ']';
+}
+
+// Numbers, booleans, strings, vectors, tuples and lists as JSON; None as null; any other
+// value (a region, a class, ...) as its short description, a string.
+void AppendValue(const lang::Value& v, Out& out) {
+  const auto& data = v.data;
+  if (const auto* x = std::get_if<double>(&data)) return AppendNumber(*x, out);
+  if (const auto* b = std::get_if<bool>(&data)) {
+    out += *b ? "true" : "false";
+    return;
+  }
+  if (const auto* s = std::get_if<lang::StringPtr>(&data)) return AppendString(**s, out);
+  if (const auto* p = std::get_if<Eigen::Vector3d>(&data))
+    return AppendNumbers({p->x(), p->y(), p->z()}, out);
+  if (v.Is<lang::NoneValue>()) {
+    out += "null";
+    return;
+  }
+  if (const auto* t = std::get_if<std::shared_ptr<lang::TupleData>>(&data))
+    return AppendElements((*t)->elements, out);
+  if (const auto* l = std::get_if<std::shared_ptr<lang::ListData>>(&data))
+    return AppendElements((*l)->elements, out);
+  AppendString(lang::Repr(v), out);
 }
 
 bool IsCoreProperty(const std::string& name) {
@@ -32,35 +99,84 @@ bool IsCoreProperty(const std::string& name) {
          name == "height" || name == "yaw" || name == "pitch" || name == "roll";
 }
 
-json ObjectToJson(const lang::SceneObject& o) {
-  const Eigen::Quaterniond q = geometry::CanonicalQuaternion(o.R_WO.toRotationMatrix());
-  const Eigen::Vector3d ypr = geometry::CalcYawPitchRoll(o.R_WO.toRotationMatrix());
-  json properties = json::object();
+void AppendProperties(const lang::SceneObject& o, Out& out) {
+  out += '{';
+  bool first = true;
   for (const auto& [name, value] : o.properties) {
-    if (!IsCoreProperty(name)) properties[name] = ValueToJson(value);
+    if (IsCoreProperty(name)) continue;
+    if (!first) out += ',';
+    first = false;
+    AppendString(name, out);
+    out += ':';
+    AppendValue(value, out);
   }
-  return {{"name", o.name ? json(*o.name) : json(nullptr)},
-          {"class", o.cls->name},
-          {"position", {o.p_WO.x(), o.p_WO.y(), o.p_WO.z()}},
-          {"orientation",
-           {{"quaternion", {q.w(), q.x(), q.y(), q.z()}}, {"yaw_pitch_roll", {ypr.x(), ypr.y(), ypr.z()}}}},
-          {"dimensions", {o.dimensions.x(), o.dimensions.y(), o.dimensions.z()}},
-          {"properties", properties}};
+  out += '}';
+}
+
+void AppendObject(const lang::SceneObject& o, Out& out) {
+  const Eigen::Matrix3d R_WO = o.R_WO.toRotationMatrix();
+  const Eigen::Quaterniond q = geometry::CanonicalQuaternion(R_WO);
+  const Eigen::Vector3d ypr = geometry::CalcYawPitchRoll(R_WO);
+  out += "{\"name\":";
+  if (o.name) {
+    AppendString(*o.name, out);
+  } else {
+    out += "null";
+  }
+  out += ",\"class\":";
+  AppendString(o.cls->name, out);
+  out += ",\"position\":";
+  AppendNumbers({o.p_WO.x(), o.p_WO.y(), o.p_WO.z()}, out);
+  out += ",\"orientation\":{\"quaternion\":";
+  AppendNumbers({q.w(), q.x(), q.y(), q.z()}, out);
+  out += ",\"yaw_pitch_roll\":";
+  AppendNumbers({ypr.x(), ypr.y(), ypr.z()}, out);
+  out += "},\"dimensions\":";
+  AppendNumbers({o.dimensions.x(), o.dimensions.y(), o.dimensions.z()}, out);
+  out += ",\"properties\":";
+  AppendProperties(o, out);
+  out += '}';
+}
+
+void AppendHeader(const sampling::SampledScene& sampled, Out& out) {
+  fmt::format_to(std::back_inserter(out),
+                 "{{\"format\":\"prs-scene/1\",\"seed\":{},\"index\":{},\"attempts\":{},"
+                 "\"rejections\":{{",
+                 sampled.seed, sampled.index, sampled.attempts);
+  bool first = true;
+  for (const auto& [kind, n] : sampled.rejections.by_kind) {
+    fmt::format_to(std::back_inserter(out), "{}\"{}\":{}", first ? "" : ",",
+                   lang::RejectionKindName(kind), n);
+    first = false;
+  }
+  out += '}';
+}
+
+void AppendParams(const lang::Scene& scene, Out& out) {
+  out += ",\"params\":{";
+  for (size_t i = 0; i < scene.params.size(); ++i) {
+    if (i > 0) out += ',';
+    AppendString(scene.params[i].first, out);
+    out += ':';
+    AppendValue(scene.params[i].second, out);
+  }
+  out += '}';
 }
 
 }  // namespace
 
 std::string FormatSceneJson(const sampling::SampledScene& sampled) {
-  json rejections = json::object();
-  for (const auto& [kind, n] : sampled.rejections.by_kind) rejections[lang::RejectionKindName(kind)] = n;
-  json params = json::object();
-  for (const auto& [name, value] : sampled.scene.params) params[name] = ValueToJson(value);
-  json objects = json::array();
-  for (const lang::SceneObject& o : sampled.scene.objects) objects.push_back(ObjectToJson(o));
-  json scene = {{"format", "prs-scene/1"}, {"seed", sampled.seed},      {"index", sampled.index},
-                {"attempts", sampled.attempts}, {"rejections", rejections}, {"params", params},
-                {"objects", objects}};
-  return scene.dump();
+  std::string out;
+  out.reserve(256 + 512 * sampled.scene.objects.size());
+  AppendHeader(sampled, out);
+  AppendParams(sampled.scene, out);
+  out += ",\"objects\":[";
+  for (size_t i = 0; i < sampled.scene.objects.size(); ++i) {
+    if (i > 0) out += ',';
+    AppendObject(sampled.scene.objects[i], out);
+  }
+  out += "]}";
+  return out;
 }
 
 }  // namespace prs::output

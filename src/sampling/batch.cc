@@ -1,6 +1,6 @@
-// The parallel batch sampler: workers claim scene indices in increasing order, park finished
-// scenes in a ring of slots, and the calling thread takes them out in index order. A worker
-// may run at most `window` scenes ahead of the consumer, which bounds memory.
+// The parallel batch sampler: workers claim runs of scene indices in increasing order, park
+// finished scenes in a ring of slots, and the calling thread takes them out in index order.
+// No scene is claimed more than `window` scenes ahead of the consumer, which bounds memory.
 #include "sampling/batch.h"
 
 #include <algorithm>
@@ -39,7 +39,8 @@ void CheckArguments(const BatchOptions& options) {
                                 std::to_string(options.threads));
   }
   const uint64_t last_allowed_start =
-      std::numeric_limits<uint64_t>::max() - static_cast<uint64_t>(std::max<int64_t>(options.count - 1, 0));
+      std::numeric_limits<uint64_t>::max() -
+      static_cast<uint64_t>(std::max<int64_t>(options.count - 1, 0));
   if (options.start > last_allowed_start) {
     throw std::invalid_argument("SampleBatch: scenes " + std::to_string(options.start) + " + " +
                                 std::to_string(options.count) + " run past index 2^64 - 1");
@@ -57,35 +58,53 @@ BatchSummary SampleOnCallingThread(const lang::CompiledProgram& program,
     item.sampled = sampler.Sample(options.seed, options.start + static_cast<uint64_t>(offset));
     if (callbacks.prepare) callbacks.prepare(item);
     summary.Add(item.sampled);
-    callbacks.consume(std::move(item));
+    if (callbacks.consume) callbacks.consume(std::move(item));
   }
   return summary;
 }
 
+// A run of consecutive offsets [begin, end) claimed by one worker.
+struct OffsetRange {
+  int64_t begin;
+  int64_t end;
+};
+
 // The hand-over between workers and the consumer. Offsets count from the batch's first scene.
 // Claims go out in increasing order, so when offset f fails every offset below f has been
 // claimed and will finish or fail: the lowest failure is found without waiting for the rest.
+// Workers claim a few scenes at a time and the consumer takes every ready scene at once, so
+// the lock and the wake-ups are paid per run of scenes, not per scene.
 class ReorderQueue {
  public:
-  ReorderQueue(int64_t count, int64_t window) : slots_(window), count_(count) {}
+  ReorderQueue(int64_t count, int64_t window, int64_t chunk)
+      : slots_(window), count_(count), chunk_(chunk) {}
 
-  /// Worker: the next offset to sample, waiting while the window is full; nullopt when
-  /// nothing is left to claim (done, stopping, or past a failed offset).
-  std::optional<int64_t> Claim() {
+  /// Worker: the next offsets to sample (at most `chunk`, as many as the window has room
+  /// for), waiting while it is full; nullopt when nothing is left to claim (done, stopping,
+  /// or past a failed offset).
+  std::optional<OffsetRange> Claim() {
     std::unique_lock lock(mutex_);
     slot_free_.wait(lock, [&] { return IsClaimOver() || HasFreeSlot(); });
     if (IsClaimOver()) return std::nullopt;
-    return next_claim_++;
+    const int64_t end =
+        std::min({next_claim_ + chunk_, next_take_ + Window(), std::min(count_, failed_offset_)});
+    const OffsetRange range{next_claim_, end};
+    next_claim_ = end;
+    return range;
   }
 
-  /// Worker: parks the finished scene for `offset`.
-  void Finish(int64_t offset, BatchScene&& scene) {
+  /// Worker: parks finished scenes for offsets begin, begin + 1, ...
+  void Finish(int64_t begin, std::vector<BatchScene>& scenes) {
+    if (scenes.empty()) return;
     bool is_awaited;
     {
       std::lock_guard lock(mutex_);
-      slots_[offset % Window()] = std::move(scene);
-      is_awaited = offset == next_take_;
+      for (size_t i = 0; i < scenes.size(); ++i) {
+        slots_[(begin + int64_t(i)) % Window()] = std::move(scenes[i]);
+      }
+      is_awaited = begin == next_take_;
     }
+    scenes.clear();
     if (is_awaited) scene_ready_.notify_one();
   }
 
@@ -102,27 +121,34 @@ class ReorderQueue {
     slot_free_.notify_all();  // workers waiting for a slot past the failure can quit
   }
 
-  /// Consumer: waits for scene `offset` and returns it. Rethrows its failure, or throws
-  /// BatchCancelled once `cancel` is set.
-  BatchScene Take(int64_t offset, const std::atomic<bool>* cancel) {
+  /// Consumer: releases the scenes before `offset` (consumed), waits for scene `offset`, then
+  /// moves it and the finished scenes right after it into `ready`. Their slots stay reserved
+  /// until the next call, so at most `window` scenes exist at a time. Rethrows the failure of
+  /// `offset`, or throws BatchCancelled once `cancel` is set.
+  void TakeReady(int64_t offset, std::vector<BatchScene>& ready, const std::atomic<bool>* cancel) {
     std::unique_lock lock(mutex_);
-    std::optional<BatchScene>& slot = slots_[offset % Window()];
-    auto is_decided = [&] { return slot.has_value() || failed_offset_ <= offset; };
+    if (offset > next_take_) {
+      next_take_ = offset;
+      slot_free_.notify_all();
+    }
+    auto is_decided = [&] {
+      return slots_[offset % Window()].has_value() || failed_offset_ <= offset;
+    };
     while (true) {
       if (cancel && cancel->load(std::memory_order_relaxed)) throw BatchCancelled();
       if (is_decided()) break;
       scene_ready_.wait_for(lock, kCancelPollInterval, is_decided);
     }
-    if (!slot) std::rethrow_exception(failure_);
-    BatchScene scene = std::move(*slot);
-    slot.reset();
-    next_take_ = offset + 1;
-    lock.unlock();
-    slot_free_.notify_one();
-    return scene;
+    if (!slots_[offset % Window()]) std::rethrow_exception(failure_);
+    for (int64_t next = offset; next < count_ && next < offset + Window(); ++next) {
+      std::optional<BatchScene>& slot = slots_[next % Window()];
+      if (!slot) break;
+      ready.push_back(std::move(*slot));
+      slot.reset();
+    }
   }
 
-  /// Tells every worker to stop claiming; their current scene still finishes.
+  /// Tells every worker to stop claiming; their current scenes still finish.
   void Stop() {
     {
       std::lock_guard lock(mutex_);
@@ -134,37 +160,43 @@ class ReorderQueue {
  private:
   int64_t Window() const { return static_cast<int64_t>(slots_.size()); }
   bool HasFreeSlot() const { return next_claim_ < next_take_ + Window(); }
-  bool IsClaimOver() const {
-    return stopping_ || next_claim_ >= std::min(count_, failed_offset_);
-  }
+  bool IsClaimOver() const { return stopping_ || next_claim_ >= std::min(count_, failed_offset_); }
 
   std::mutex mutex_;
   std::condition_variable scene_ready_;  // the consumer waits here
   std::condition_variable slot_free_;    // workers wait here
   std::vector<std::optional<BatchScene>> slots_;
   const int64_t count_;
+  const int64_t chunk_;
   int64_t next_claim_ = 0;
-  int64_t next_take_ = 0;
+  int64_t next_take_ = 0;  // offsets below it are consumed; their slots are free
   int64_t failed_offset_ = std::numeric_limits<int64_t>::max();
   std::exception_ptr failure_;
   bool stopping_ = false;
 };
 
-// A worker: samples claimed offsets until none is left. Every error, even from building the
-// sampler, is charged to the offset being sampled, so the consumer reports it in order.
+// A worker: samples claimed runs until none is left. A failure ends its run (the scenes after
+// it are not needed); every error, even from building the sampler, is charged to the offset
+// being sampled, so the consumer reports it in order.
 void RunWorker(const lang::CompiledProgram& program, const BatchOptions& options,
                const BatchCallbacks& callbacks, ReorderQueue& queue) {
   std::optional<SceneSampler> sampler;
-  while (const std::optional<int64_t> offset = queue.Claim()) {
-    try {
-      if (!sampler) sampler.emplace(program, options.sample);
-      BatchScene item;
-      item.sampled = sampler->Sample(options.seed, options.start + static_cast<uint64_t>(*offset));
-      if (callbacks.prepare) callbacks.prepare(item);
-      queue.Finish(*offset, std::move(item));
-    } catch (...) {
-      queue.Fail(*offset, std::current_exception());
+  std::vector<BatchScene> finished;
+  while (const std::optional<OffsetRange> range = queue.Claim()) {
+    for (int64_t offset = range->begin; offset < range->end; ++offset) {
+      try {
+        if (!sampler) sampler.emplace(program, options.sample);
+        BatchScene item;
+        item.sampled = sampler->Sample(options.seed, options.start + static_cast<uint64_t>(offset));
+        if (callbacks.prepare) callbacks.prepare(item);
+        finished.push_back(std::move(item));
+      } catch (...) {
+        queue.Finish(range->begin, finished);
+        queue.Fail(offset, std::current_exception());
+        break;
+      }
     }
+    queue.Finish(range->begin, finished);
   }
 }
 
@@ -175,31 +207,48 @@ struct StopQueueOnExit {
   ~StopQueueOnExit() { queue.Stop(); }
 };
 
+// Small batches are claimed one scene at a time so that every thread gets a share; large ones
+// in runs of up to 16, which is plenty to amortise the lock.
+int64_t ChooseChunk(int64_t count, int threads) {
+  constexpr int64_t kMaxChunk = 16;
+  return std::clamp<int64_t>(count / (int64_t{threads} * 16), 1, kMaxChunk);
+}
+
 BatchSummary SampleOnWorkers(const lang::CompiledProgram& program, const BatchOptions& options,
                              const BatchCallbacks& callbacks, int threads) {
   const int64_t window = int64_t{threads} * std::max(options.window_per_thread, 1);
-  ReorderQueue queue(options.count, window);
+  ReorderQueue queue(options.count, window, ChooseChunk(options.count, threads));
   BatchSummary summary;
   std::vector<std::jthread> workers;
   StopQueueOnExit stop_queue{queue};
   for (int t = 0; t < threads; ++t) {
     workers.emplace_back([&] { RunWorker(program, options, callbacks, queue); });
   }
-  for (int64_t offset = 0; offset < options.count; ++offset) {
-    BatchScene item = queue.Take(offset, options.cancel);
-    summary.Add(item.sampled);
-    callbacks.consume(std::move(item));
+  std::vector<BatchScene> ready;
+  for (int64_t offset = 0; offset < options.count;) {
+    queue.TakeReady(offset, ready, options.cancel);
+    for (BatchScene& item : ready) {
+      if (IsCancelled(options)) throw BatchCancelled();
+      summary.Add(item.sampled);
+      if (callbacks.consume) callbacks.consume(std::move(item));
+      ++offset;
+    }
+    ready.clear();
   }
   return summary;
 }
 
 }  // namespace
 
+int CountBatchThreads(const BatchOptions& options) {
+  return static_cast<int>(std::clamp<int64_t>(options.count, 1, std::max(options.threads, 1)));
+}
+
 BatchSummary SampleBatch(const lang::CompiledProgram& program, const BatchOptions& options,
                          const BatchCallbacks& callbacks) {
   CheckArguments(options);
-  const int threads = static_cast<int>(std::min<int64_t>(options.threads, options.count));
-  if (threads <= 1) return SampleOnCallingThread(program, options, callbacks);
+  const int threads = CountBatchThreads(options);
+  if (threads == 1) return SampleOnCallingThread(program, options, callbacks);
   return SampleOnWorkers(program, options, callbacks, threads);
 }
 

@@ -35,7 +35,8 @@ struct BatchCallbacks {
   /// Optional. Runs on a worker thread right after a scene is sampled, in no particular
   /// order: per-scene work that should run in parallel (e.g. formatting it as JSON).
   std::function<void(BatchScene&)> prepare;
-  /// Runs on the calling thread, once per scene, in index order.
+  /// Runs on the calling thread, once per scene, in index order. Optional (a batch run only
+  /// for its summary).
   std::function<void(BatchScene&&)> consume;
 };
 
@@ -53,6 +54,10 @@ class BatchCancelled : public std::runtime_error {
  public:
   BatchCancelled() : std::runtime_error("the batch was cancelled") {}
 };
+
+/// The threads SampleBatch samples on: min(threads, count), at least 1 (1 means the calling
+/// thread alone).
+int CountBatchThreads(const BatchOptions& options);
 
 /// Samples scenes start..start+count-1 of `seed` and hands each to `callbacks.consume` in index
 /// order. Scene i is SceneSampler::Sample(seed, i), so the scenes do not depend on `threads`.

@@ -35,8 +35,8 @@ std::string Fingerprint(const SampledScene& sampled) {
   char buffer[64];
   for (const lang::SceneObject& o : sampled.scene.objects) {
     text += " " + o.cls->name + ":" + o.name.value_or("-");
-    const double numbers[] = {o.p_WO.x(),   o.p_WO.y(),   o.p_WO.z(),         o.R_WO.w(),
-                              o.R_WO.x(),   o.R_WO.y(),   o.R_WO.z(),         o.dimensions.x(),
+    const double numbers[] = {o.p_WO.x(),       o.p_WO.y(),      o.p_WO.z(), o.R_WO.w(),
+                              o.R_WO.x(),       o.R_WO.y(),      o.R_WO.z(), o.dimensions.x(),
                               o.dimensions.y(), o.dimensions.z()};
     for (double x : numbers) {
       std::snprintf(buffer, sizeof buffer, " %a", x);
@@ -58,19 +58,31 @@ std::vector<std::string> SampleFingerprints(const lang::CompiledProgram& program
   options.count = count;
   options.threads = threads;
   std::vector<std::string> fingerprints;
-  SampleBatch(program, options, {.consume = [&](BatchScene&& scene) {
-                fingerprints.push_back(Fingerprint(scene.sampled));
-              }});
+  SampleBatch(program, options, {.prepare = {}, .consume = [&](BatchScene&& scene) {
+                                   fingerprints.push_back(Fingerprint(scene.sampled));
+                                 }});
   return fingerprints;
 }
 
+// Collisions and a requirement: about half the attempts are rejected.
+constexpr char kRejectingProgram[] =
+    "from model import *\n"
+    "t = Table on floor\n"
+    "a = Cube on t\n"
+    "b = Cube on t\n"
+    "require a.position.x > 0\n";
+
 TEST(BatchTest, SameScenesForAnyThreadCount) {
-  auto program = CompileTableCube();
-  ASSERT_NE(program, nullptr);
-  const std::vector<std::string> one = SampleFingerprints(*program, 0, 40, 1);
-  ASSERT_EQ(one.size(), 40u);
-  EXPECT_EQ(SampleFingerprints(*program, 0, 40, 2), one);
-  EXPECT_EQ(SampleFingerprints(*program, 0, 40, 4), one);
+  auto table_cube = CompileTableCube();
+  auto rejecting = CompileOrDie(kRejectingProgram);
+  ASSERT_NE(table_cube, nullptr);
+  ASSERT_NE(rejecting, nullptr);
+  for (const lang::CompiledProgram* program : {table_cube.get(), rejecting.get()}) {
+    const std::vector<std::string> one = SampleFingerprints(*program, 0, 40, 1);
+    ASSERT_EQ(one.size(), 40u);
+    EXPECT_EQ(SampleFingerprints(*program, 0, 40, 2), one);
+    EXPECT_EQ(SampleFingerprints(*program, 0, 40, 4), one);
+  }
 }
 
 TEST(BatchTest, SameScenesForAnySplitOfTheRange) {
@@ -84,7 +96,7 @@ TEST(BatchTest, SameScenesForAnySplitOfTheRange) {
 }
 
 TEST(BatchTest, SummaryAddsUpOverTheScenes) {
-  auto program = CompileTableCube();
+  auto program = CompileOrDie(kRejectingProgram);
   ASSERT_NE(program, nullptr);
   BatchOptions options;
   options.seed = 3;
@@ -93,11 +105,12 @@ TEST(BatchTest, SummaryAddsUpOverTheScenes) {
   RejectionCounts summed;
   int64_t attempts = 0;
   const BatchSummary summary =
-      SampleBatch(*program, options, {.consume = [&](BatchScene&& scene) {
-                    summed.Merge(scene.sampled.rejections);
-                    attempts += scene.sampled.attempts;
-                  }});
+      SampleBatch(*program, options, {.prepare = {}, .consume = [&](BatchScene&& scene) {
+                                        summed.Merge(scene.sampled.rejections);
+                                        attempts += scene.sampled.attempts;
+                                      }});
   EXPECT_EQ(summary.scenes, 50);
+  EXPECT_GT(summary.rejections.total, 0);
   EXPECT_EQ(summary.attempts, attempts);
   EXPECT_EQ(summary.rejections.total, summed.total);
   EXPECT_EQ(summary.rejections.by_kind, summed.by_kind);
@@ -146,7 +159,7 @@ TEST(BatchTest, SamplingFailureIsTheSameForAnyThreadCount) {
     options.threads = threads;
     int64_t consumed = 0;
     try {
-      SampleBatch(*program, options, {.consume = [&](BatchScene&&) { ++consumed; }});
+      SampleBatch(*program, options, {.prepare = {}, .consume = [&](BatchScene&&) { ++consumed; }});
     } catch (const lang::ScenarioError& error) {
       EXPECT_EQ(error.diagnostic().id, "sampling-failed");
       return std::to_string(consumed) + " " + error.diagnostic().message;
@@ -194,9 +207,12 @@ TEST(BatchTest, StopsWhenCancelled) {
     options.threads = threads;
     options.cancel = &cancel;
     int64_t consumed = 0;
-    EXPECT_THROW(SampleBatch(*program, options, {.consume = [&](BatchScene&&) {
-                               if (++consumed == 5) cancel = true;
-                             }}),
+    EXPECT_THROW(SampleBatch(*program, options,
+                             {.prepare = {},
+                              .consume =
+                                  [&](BatchScene&&) {
+                                    if (++consumed == 5) cancel = true;
+                                  }}),
                  BatchCancelled);
     EXPECT_EQ(consumed, 5) << threads << " threads";
   }
@@ -221,9 +237,9 @@ TEST(BatchTest, EmptyBatchConsumesNothing) {
   ASSERT_NE(program, nullptr);
   BatchOptions options;
   options.threads = 4;
-  const BatchSummary summary = SampleBatch(*program, options, {.consume = [](BatchScene&&) {
-                                             ADD_FAILURE() << "consumed a scene";
-                                           }});
+  const BatchSummary summary = SampleBatch(
+      *program, options,
+      {.prepare = {}, .consume = [](BatchScene&&) { ADD_FAILURE() << "consumed a scene"; }});
   EXPECT_EQ(summary.scenes, 0);
 }
 

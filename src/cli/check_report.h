@@ -1,0 +1,28 @@
+// The text `prs check` prints: a header, the creation sites with their position regions, the
+// properties observed to vary between sampled scenes, and the classes.
+#pragma once
+
+#include <string>
+
+#include "cli/property_variation.h"
+#include "cli/scenario_outline.h"
+
+namespace prs::cli {
+
+/// "FILE: ok (M modules, C classes, S creation sites)".
+std::string FormatCheckHeader(const std::string& file, const lang::CompiledProgram& program,
+                              const ScenarioOutline& outline);
+
+/// One row per creation site: where, variable, class, position specifiers, region kind.
+std::string FormatObjectsSection(const ScenarioOutline& outline,
+                                 const lang::SourceManager& sources);
+
+/// One row per creation site: the properties that differed between the observed scenes.
+std::string FormatRandomSection(const ScenarioOutline& outline, const VariationObserver& observed,
+                                uint64_t seed, const lang::SourceManager& sources);
+
+/// One row per class the program defines: parent, where, own properties.
+std::string FormatClassesSection(const ScenarioOutline& outline,
+                                 const lang::SourceManager& sources);
+
+}  // namespace prs::cli

@@ -1,0 +1,159 @@
+// Shared pieces of the `prs` commands: options, compiling the scenario, reporting errors.
+#include "cli/common.h"
+
+#include <unistd.h>
+
+#include <charconv>
+#include <cstdlib>
+#include <iostream>
+#include <limits>
+#include <sstream>
+#include <thread>
+
+namespace prs::cli {
+namespace {
+
+// -p NAME=VALUE: a non-empty NAME before the first '='.
+CLI::Validator ParamAssignment() {
+  return CLI::Validator(
+      [](std::string& text) -> std::string {
+        const size_t eq = text.find('=');
+        if (eq == std::string::npos || eq == 0) return "expects NAME=VALUE, got '" + text + "'";
+        return "";
+      },
+      "");
+}
+
+std::vector<std::pair<std::string, std::string>> SplitParams(
+    const std::vector<std::string>& params) {
+  std::vector<std::pair<std::string, std::string>> overrides;
+  for (const std::string& p : params) {
+    const size_t eq = p.find('=');  // the validator guaranteed one
+    overrides.emplace_back(p.substr(0, eq), p.substr(eq + 1));
+  }
+  return overrides;
+}
+
+std::vector<std::string> SplitPrsPath() {
+  std::vector<std::string> dirs;
+  if (const char* env = std::getenv("PRS_PATH")) {
+    std::stringstream path(env);
+    for (std::string dir; std::getline(path, dir, ':');) {
+      if (!dir.empty()) dirs.push_back(dir);
+    }
+  }
+  return dirs;
+}
+
+bool UseColor() { return IsStderrTerminal() && std::getenv("NO_COLOR") == nullptr; }
+
+}  // namespace
+
+CLI::Validator IntegerInRange(int64_t min, int64_t max) {
+  return CLI::Validator(
+      [min, max](std::string& text) -> std::string {
+        int64_t value = 0;
+        const char* end = text.data() + text.size();
+        const auto [stop, error] = std::from_chars(text.data(), end, value);
+        if (error == std::errc() && stop == end && value >= min && value <= max) return "";
+        if (max == std::numeric_limits<int64_t>::max()) {
+          return "expects an integer >= " + std::to_string(min) + ", got '" + text + "'";
+        }
+        return "expects an integer from " + std::to_string(min) + " to " + std::to_string(max) +
+               ", got '" + text + "'";
+      },
+      "");
+}
+
+CLI::Validator IntegerAtLeast(int64_t min) {
+  return IntegerInRange(min, std::numeric_limits<int64_t>::max());
+}
+
+// Digits only, so that "-1" is not wrapped around to 2^64 - 1, and within 64 bits.
+CLI::Validator UnsignedIntegerText() {
+  return CLI::Validator(
+      [](std::string& text) -> std::string {
+        uint64_t value = 0;
+        const char* end = text.data() + text.size();
+        const auto [stop, error] = std::from_chars(text.data(), end, value);
+        const bool digits =
+            !text.empty() && text.find_first_not_of("0123456789") == std::string::npos;
+        if (digits && error == std::errc() && stop == end) return "";
+        return "expects an integer from 0 to 2^64 - 1, got '" + text + "'";
+      },
+      "");
+}
+
+void AddScenarioOptions(CLI::App& command, ScenarioArgs& args) {
+  command.add_option("FILE", args.file, "the .prs scenario")->required();
+  command.add_option("-I", args.include_dirs, "a directory searched for imported modules")
+      ->type_name("DIR")
+      ->allow_extra_args(false);
+  command.add_option("-p,--param", args.params, "override a param")
+      ->type_name("NAME=VALUE")
+      ->check(ParamAssignment())
+      ->allow_extra_args(false);
+}
+
+void AddSamplingOptions(CLI::App& command, SamplingArgs& args) {
+  args.threads = CountHardwareThreads();
+  command.add_option("-s,--seed", args.seed, "random seed")
+      ->type_name("S")
+      ->check(UnsignedIntegerText())
+      ->capture_default_str();
+  command.add_option("--threads", args.threads, "worker threads (default: all hardware threads)")
+      ->type_name("T")
+      ->check(IntegerInRange(1, 1024))
+      ->capture_default_str();
+  command.add_flag("--naive", args.naive,
+                   "the paper's baseline: positions from the workspace, specifiers checked after");
+  command.add_option("--max-attempts", args.max_attempts, "attempts per scene before failing")
+      ->type_name("K")
+      ->check(IntegerAtLeast(1))
+      ->capture_default_str();
+}
+
+int CountHardwareThreads() { return std::max(1u, std::thread::hardware_concurrency()); }
+
+std::unique_ptr<lang::CompiledProgram> CompileScenario(const ScenarioArgs& args) {
+  lang::CompileOptions options;
+  options.search_path = args.include_dirs;
+  for (std::string& dir : SplitPrsPath()) options.search_path.push_back(std::move(dir));
+  options.param_overrides = SplitParams(args.params);
+  lang::DiagnosticEngine diagnostics;
+  auto program = lang::CompileFile(args.file, options, diagnostics);
+  const bool color = UseColor();
+  for (const lang::Diagnostic& d : diagnostics.diagnostics()) {
+    std::cerr << lang::RenderDiagnostic(d, program->sources, color);
+  }
+  if (diagnostics.has_errors()) return nullptr;
+  return program;
+}
+
+sampling::SampleOptions MakeSampleOptions(const SamplingArgs& args) {
+  sampling::SampleOptions options;
+  options.max_attempts = args.max_attempts;
+  options.run.mode = args.naive ? lang::SamplingMode::kNaive : lang::SamplingMode::kRegion;
+  return options;
+}
+
+int ReportScenarioError(const lang::ScenarioError& error, const lang::SourceManager& sources) {
+  std::cerr << lang::RenderDiagnostic(error.diagnostic(), sources, UseColor());
+  return error.diagnostic().id == "sampling-failed" ? kExitSamplingFailure : kExitScenarioError;
+}
+
+std::string FormatCount(int64_t n, std::string_view noun) {
+  std::string text = std::to_string(n) + " " + std::string(noun);
+  if (n != 1) text += noun.ends_with("s") ? "es" : "s";
+  return text;
+}
+
+void PrintError(std::string_view message) { std::cerr << "prs: error: " << message << '\n'; }
+
+void PrintNote(std::string_view message) { std::cerr << "prs: " << message << '\n'; }
+
+bool IsStderrTerminal() { return ::isatty(STDERR_FILENO) == 1; }
+
+bool IsStdoutTerminal() { return ::isatty(STDOUT_FILENO) == 1; }
+
+}  // namespace prs::cli

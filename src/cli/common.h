@@ -1,0 +1,78 @@
+// What every `prs` command shares: the exit codes, the scenario and sampling options, compiling
+// the scenario with its diagnostics printed, and reporting errors as `prs: error: ...`.
+#pragma once
+
+#include <CLI/CLI.hpp>
+#include <cstdint>
+#include <memory>
+#include <string>
+#include <string_view>
+#include <vector>
+
+#include "lang/lang.h"
+#include "sampling/sampler.h"
+
+namespace prs::cli {
+
+/// The documented exit codes (docs/cli.md).
+enum ExitCode : int {
+  kExitSuccess = 0,
+  kExitScenarioError = 1,      // compile or run-time error, unreadable FILE, unwritable OUT
+  kExitUsage = 2,              // bad command line
+  kExitSamplingFailure = 3,    // no valid scene within the attempt limit (or none possible)
+  kExitInterruptedBase = 128,  // + the signal number, after SIGINT or SIGTERM
+};
+
+/// The scenario a command works on: FILE, -I DIR..., -p NAME=VALUE...
+struct ScenarioArgs {
+  std::string file;
+  std::vector<std::string> include_dirs;
+  std::vector<std::string> params;
+};
+
+/// How scenes are sampled: -s, --threads, --naive, --max-attempts.
+struct SamplingArgs {
+  uint64_t seed = 0;
+  int threads = 1;
+  bool naive = false;
+  int64_t max_attempts = 10'000;
+};
+
+/// Adds FILE, -I and -p to `command`.
+void AddScenarioOptions(CLI::App& command, ScenarioArgs& args);
+/// Adds -s, --threads, --naive and --max-attempts to `command`.
+void AddSamplingOptions(CLI::App& command, SamplingArgs& args);
+
+/// Checks that an option's text is an integer in [min, max], with a message a user can act on.
+CLI::Validator IntegerInRange(int64_t min, int64_t max);
+CLI::Validator IntegerAtLeast(int64_t min);
+/// Checks that an option's text is a non-negative integer (digits only, so "-1" is refused
+/// instead of wrapping around in an unsigned option).
+CLI::Validator UnsignedIntegerText();
+
+/// All hardware threads (at least 1).
+int CountHardwareThreads();
+
+/// Compiles the scenario (search path: -I dirs, then $PRS_PATH), printing every diagnostic on
+/// stderr. Returns null when there were errors (a missing FILE is one: "file-not-found").
+std::unique_ptr<lang::CompiledProgram> CompileScenario(const ScenarioArgs& args);
+
+sampling::SampleOptions MakeSampleOptions(const SamplingArgs& args);
+
+/// Prints the diagnostic of a failed run and returns its exit code: kExitSamplingFailure for
+/// "sampling-failed", kExitScenarioError for anything else.
+int ReportScenarioError(const lang::ScenarioError& error, const lang::SourceManager& sources);
+
+/// "1 scene", "2 scenes", "3 classes".
+std::string FormatCount(int64_t n, std::string_view noun);
+
+/// Prints `prs: error: MESSAGE` on stderr.
+void PrintError(std::string_view message);
+/// Prints `prs: MESSAGE` on stderr.
+void PrintNote(std::string_view message);
+
+/// True when stderr is a terminal (then diagnostics are coloured unless NO_COLOR is set).
+bool IsStderrTerminal();
+bool IsStdoutTerminal();
+
+}  // namespace prs::cli

@@ -1,0 +1,212 @@
+// `prs sample`: scenes start..start+count-1 as JSON Lines (spec §8) on stdout or in a file,
+// sampled by worker threads and written in index order; a summary, and for long runs on a
+// terminal a progress bar, on stderr.
+#include <fmt/format.h>
+
+#include <chrono>
+#include <limits>
+#include <memory>
+
+#include "cli/commands.h"
+#include "cli/common.h"
+#include "cli/interrupt.h"
+#include "cli/progress.h"
+#include "output/line_writer.h"
+#include "output/scene_json.h"
+#include "sampling/batch.h"
+
+namespace prs::cli {
+namespace {
+
+struct SampleArgs {
+  ScenarioArgs scenario;
+  SamplingArgs sampling;
+  int64_t count = 1;
+  uint64_t start = 0;
+  std::string output;  // empty or "-": stdout
+  bool quiet = false;
+};
+
+bool RunsPastLastIndex(const SampleArgs& args) {
+  return args.count > 0 &&
+         args.start > std::numeric_limits<uint64_t>::max() - uint64_t(args.count - 1);
+}
+
+std::unique_ptr<output::LineWriter> OpenOutput(const std::string& path) {
+  if (path.empty() || path == "-") return std::make_unique<output::LineWriter>();
+  return std::make_unique<output::LineWriter>(path);
+}
+
+// Scenes printed on the terminal show progress themselves, and a bar would garble them.
+bool ShouldShowProgress(const SampleArgs& args, const output::LineWriter& writer) {
+  return !args.quiet && IsStderrTerminal() && (writer.is_file() || !IsStdoutTerminal());
+}
+
+// "100 scenes, 137 attempts, 37 rejections (collision 30, requirement 7); 0.02 s, 5000 scenes/s
+// on 2 threads"
+std::string FormatSampleSummary(const sampling::BatchSummary& summary, double seconds,
+                                int threads) {
+  std::string text = FormatCount(summary.scenes, "scene") + ", " +
+                     FormatCount(summary.attempts, "attempt") + ", " +
+                     FormatCount(summary.rejections.total, "rejection");
+  std::string reasons;
+  for (const auto& [kind, n] : summary.rejections.by_kind) {
+    reasons +=
+        fmt::format("{}{} {}", reasons.empty() ? "" : ", ", lang::RejectionKindName(kind), n);
+  }
+  if (!reasons.empty()) text += " (" + reasons + ")";
+  const double rate = seconds > 0 ? summary.scenes / seconds : 0.0;
+  return text + fmt::format("; {:.2f} s, {:.0f} scenes/s on {}", seconds, rate,
+                            FormatCount(threads, "thread"));
+}
+
+class SceneWriterRun {
+ public:
+  SceneWriterRun(const lang::CompiledProgram& program, const SampleArgs& args,
+                 output::LineWriter& writer)
+      : program_(program),
+        args_(args),
+        writer_(writer),
+        progress_(args.count, ShouldShowProgress(args, writer)) {}
+
+  int Run() {
+    const auto begin = std::chrono::steady_clock::now();
+    try {
+      const sampling::BatchOptions options = MakeBatchOptions();
+      const sampling::BatchSummary summary =
+          sampling::SampleBatch(program_, options, MakeCallbacks());
+      writer_.Commit();
+      progress_.Erase();
+      const double seconds =
+          std::chrono::duration<double>(std::chrono::steady_clock::now() - begin).count();
+      if (!args_.quiet) {
+        PrintNote(FormatSampleSummary(summary, seconds, sampling::CountBatchThreads(options)));
+      }
+      return kExitSuccess;
+    } catch (const lang::ScenarioError& error) {
+      return ReportFailure(error);
+    } catch (const sampling::BatchCancelled&) {
+      return ReportInterruption();
+    } catch (const std::exception& error) {  // cannot write the output
+      progress_.Erase();
+      PrintError(error.what());
+      return kExitScenarioError;
+    }
+  }
+
+ private:
+  sampling::BatchOptions MakeBatchOptions() const {
+    sampling::BatchOptions options;
+    options.sample = MakeSampleOptions(args_.sampling);
+    options.seed = args_.sampling.seed;
+    options.start = args_.start;
+    options.count = args_.count;
+    options.threads = args_.sampling.threads;
+    options.cancel = &interrupt_.flag();
+    return options;
+  }
+
+  sampling::BatchCallbacks MakeCallbacks() {
+    sampling::BatchCallbacks callbacks;
+    // Formatting is per scene and independent, so it runs on the workers.
+    // The objects are freed there too: only the line and the counts travel to the writer,
+    // and memory is not freed across threads.
+    callbacks.prepare = [](sampling::BatchScene& scene) {
+      scene.rendered = output::FormatSceneJson(scene.sampled);
+      scene.sampled.scene = {};
+    };
+    callbacks.consume = [this](sampling::BatchScene&& scene) {
+      writer_.AddLine(scene.rendered);
+      progress_.Update(++done_);
+    };
+    return callbacks;
+  }
+
+  // The scenes before the failing one stay written (in OUT.partial for a file).
+  int ReportFailure(const lang::ScenarioError& error) {
+    progress_.Erase();
+    const bool flushed = FlushQuietly();
+    const int code = ReportScenarioError(error, program_.sources);
+    if (flushed) PrintNote(DescribeFailure());
+    return code;
+  }
+
+  std::string DescribeFailure() const {
+    const uint64_t failed = args_.start + uint64_t(done_);
+    const std::string where = writer_.partial_path();
+    if (done_ == 0) return fmt::format("scene {} failed; no scene was written", failed);
+    if (done_ == 1)
+      return fmt::format("scene {} failed; the scene before it was written to {}", failed, where);
+    return fmt::format("scene {} failed; the {} scenes before it were written to {}", failed, done_,
+                       where);
+  }
+
+  int ReportInterruption() {
+    progress_.Erase();
+    if (FlushQuietly()) {
+      PrintNote(fmt::format("interrupted; {} written to {} (resume with --start {} -n {})",
+                            FormatCount(done_, "scene"), writer_.partial_path(),
+                            args_.start + uint64_t(done_), args_.count - done_));
+    }
+    return kExitInterruptedBase + interrupt_.signal_number();
+  }
+
+  bool FlushQuietly() {
+    try {
+      writer_.Flush();
+      return true;
+    } catch (const std::exception& error) {
+      PrintError(error.what());
+      return false;
+    }
+  }
+
+  const lang::CompiledProgram& program_;
+  const SampleArgs& args_;
+  output::LineWriter& writer_;
+  InterruptWatch interrupt_;
+  ProgressBar progress_;
+  int64_t done_ = 0;
+};
+
+int RunSample(const SampleArgs& args) {
+  if (RunsPastLastIndex(args)) {
+    PrintError(fmt::format("--start {} with -n {} runs past the last scene index, 2^64 - 1",
+                           args.start, args.count));
+    return kExitUsage;
+  }
+  auto program = CompileScenario(args.scenario);
+  if (!program) return kExitScenarioError;
+  std::unique_ptr<output::LineWriter> writer;
+  try {
+    writer = OpenOutput(args.output);
+  } catch (const std::exception& error) {
+    PrintError(error.what());
+    return kExitScenarioError;
+  }
+  return SceneWriterRun(*program, args, *writer).Run();
+}
+
+}  // namespace
+
+CommandRunner ConfigureSampleCommand(CLI::App& command) {
+  auto args = std::make_shared<SampleArgs>();
+  AddScenarioOptions(command, args->scenario);
+  command.add_option("-n,--count", args->count, "number of scenes")
+      ->type_name("N")
+      ->check(IntegerAtLeast(0))
+      ->capture_default_str();
+  command.add_option("--start", args->start, "index of the first scene")
+      ->type_name("I")
+      ->check(UnsignedIntegerText())
+      ->capture_default_str();
+  command
+      .add_option("-o,--output", args->output,
+                  "write to OUT (via OUT.partial, renamed when complete) instead of stdout")
+      ->type_name("OUT");
+  AddSamplingOptions(command, args->sampling);
+  command.add_flag("-q,--quiet", args->quiet, "no summary on stderr");
+  return [args] { return RunSample(*args); };
+}
+
+}  // namespace prs::cli

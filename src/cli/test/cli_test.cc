@@ -1,0 +1,302 @@
+// End-to-end tests of the built `prs` binary: every exit code with its located message on
+// stderr, JSON Lines on stdout and in -o files, byte-identical output for any thread count
+// and any split of the index range, `prs check`'s outline, `prs stats --json`, and SIGTERM.
+#include <gtest/gtest.h>
+#include <sys/wait.h>
+#include <unistd.h>
+
+#include <cstdlib>
+#include <filesystem>
+#include <fstream>
+#include <nlohmann/json.hpp>
+#include <sstream>
+#include <string>
+#include <vector>
+
+namespace prs::cli {
+namespace {
+
+namespace fs = std::filesystem;
+using nlohmann::json;
+
+fs::path RepoRoot() {
+  const char* dir = std::getenv("PRS_SOURCE_DIR");
+  return dir ? fs::path(dir) : fs::path(PRS_DEFAULT_SOURCE_DIR);
+}
+
+std::string Example(const std::string& name) { return (RepoRoot() / "examples" / name).string(); }
+
+std::string ReadText(const fs::path& path) {
+  std::ifstream in(path, std::ios::binary);
+  std::stringstream text;
+  text << in.rdbuf();
+  return text.str();
+}
+
+std::string Quote(const std::string& arg) {
+  std::string quoted = "'";
+  for (char c : arg) quoted += c == '\'' ? std::string("'\\''") : std::string(1, c);
+  return quoted + "'";
+}
+
+struct Result {
+  int exit_code = -1;
+  std::string out;
+  std::string err;
+};
+
+// A fresh directory per test, with the scenario files the test writes into it.
+class PrsTest : public testing::Test {
+ protected:
+  void SetUp() override {
+    const auto* info = testing::UnitTest::GetInstance()->current_test_info();
+    dir_ = fs::temp_directory_path() /
+           ("prs_cli_test_" + std::string(info->name()) + "_" + std::to_string(::getpid()));
+    fs::remove_all(dir_);
+    fs::create_directories(dir_);
+  }
+  void TearDown() override { fs::remove_all(dir_); }
+
+  std::string Write(const std::string& name, const std::string& text) {
+    std::ofstream(dir_ / name, std::ios::binary) << text;
+    return (dir_ / name).string();
+  }
+
+  // Runs `prs ARGS...` through the shell, capturing stdout and stderr.
+  Result Run(const std::vector<std::string>& args) {
+    std::string command = Quote(PRS_BINARY);
+    for (const std::string& arg : args) command.append(" ").append(Quote(arg));
+    const fs::path out = dir_ / "stdout.txt", err = dir_ / "stderr.txt";
+    command.append(" >").append(Quote(out.string())).append(" 2>").append(Quote(err.string()));
+    const int status = std::system(command.c_str());
+    Result result;
+    result.exit_code = WIFEXITED(status) ? WEXITSTATUS(status) : -1;
+    result.out = ReadText(out);
+    result.err = ReadText(err);
+    return result;
+  }
+
+  fs::path dir_;
+};
+
+std::vector<std::string> SplitLines(const std::string& text) {
+  std::vector<std::string> lines;
+  std::stringstream stream(text);
+  for (std::string line; std::getline(stream, line);) lines.push_back(line);
+  return lines;
+}
+
+// Every line is a complete JSON scene; returns their indices.
+std::vector<uint64_t> ParseSceneIndices(const std::string& text) {
+  EXPECT_TRUE(text.empty() || text.back() == '\n') << "the last line is incomplete";
+  std::vector<uint64_t> indices;
+  for (const std::string& line : SplitLines(text)) {
+    const json scene = json::parse(line, nullptr, /*allow_exceptions=*/false);
+    EXPECT_FALSE(scene.is_discarded()) << "not JSON: " << line;
+    if (scene.is_discarded()) continue;
+    EXPECT_EQ(scene["format"], "prs-scene/1");
+    indices.push_back(scene["index"].get<uint64_t>());
+  }
+  return indices;
+}
+
+const char kRequirementProgram[] =
+    "from model import *\n"
+    "t = Table on floor\n"
+    "c = Cube on t\n"
+    "require c.position.x > 0\n";
+
+TEST_F(PrsTest, SampleSucceedsWithOneJsonScenePerLine) {
+  const Result r = Run({"sample", Example("table_cube.prs"), "-n", "5", "-s", "1"});
+  EXPECT_EQ(r.exit_code, 0) << r.err;
+  EXPECT_EQ(ParseSceneIndices(r.out), (std::vector<uint64_t>{0, 1, 2, 3, 4}));
+  EXPECT_NE(r.err.find("prs: 5 scenes, 5 attempts, 0 rejections"), std::string::npos) << r.err;
+  EXPECT_EQ(r.err.find('\r'), std::string::npos) << "a progress bar on a non-terminal";
+}
+
+TEST_F(PrsTest, SampleIsByteIdenticalForAnyThreadCount) {
+  const std::string file = Write("req.prs", kRequirementProgram);
+  const std::vector<std::string> args = {"sample", file, "-I", Example(""), "-n", "40", "-s", "9"};
+  auto run_with = [&](const char* threads) {
+    std::vector<std::string> with = args;
+    with.insert(with.end(), {"--threads", threads});
+    return Run(with);
+  };
+  const Result one = run_with("1");
+  ASSERT_EQ(one.exit_code, 0) << one.err;
+  EXPECT_EQ(SplitLines(one.out).size(), 40u);
+  EXPECT_EQ(run_with("2").out, one.out);
+  EXPECT_EQ(run_with("4").out, one.out);
+}
+
+TEST_F(PrsTest, SampleIsByteIdenticalForAnySplitOfTheRange) {
+  const std::string file = Example("table_cube.prs");
+  const Result whole = Run({"sample", file, "-n", "10", "-s", "3"});
+  const Result first = Run({"sample", file, "-n", "4", "-s", "3", "--threads", "1"});
+  const Result rest = Run({"sample", file, "-n", "6", "-s", "3", "--start", "4", "--threads", "3"});
+  ASSERT_EQ(whole.exit_code, 0) << whole.err;
+  EXPECT_EQ(first.out + rest.out, whole.out);
+}
+
+TEST_F(PrsTest, ScenarioErrorExitsOneWithALocatedMessage) {
+  const std::string file = Write("bad.prs", "from model import *\nt = Tabel on floor\n");
+  const Result r = Run({"sample", file, "-I", Example("")});
+  EXPECT_EQ(r.exit_code, 1);
+  EXPECT_NE(r.err.find(file + ":2:5: error: unknown class 'Tabel'"), std::string::npos) << r.err;
+  EXPECT_TRUE(r.out.empty());
+  EXPECT_EQ(Run({"check", file, "-I", Example("")}).exit_code, 1);
+  EXPECT_EQ(Run({"stats", file, "-I", Example("")}).exit_code, 1);
+}
+
+TEST_F(PrsTest, MissingFileIsAScenarioError) {
+  const Result r = Run({"sample", (dir_ / "missing.prs").string()});
+  EXPECT_EQ(r.exit_code, 1);
+  EXPECT_NE(r.err.find("error: cannot read"), std::string::npos) << r.err;
+}
+
+TEST_F(PrsTest, UsageErrorsExitTwo) {
+  const std::string file = Example("table_cube.prs");
+  const std::vector<std::vector<std::string>> bad_command_lines = {
+      {},
+      {"sampel", file},
+      {"sample"},
+      {"sample", file, "--bogus"},
+      {"sample", file, "-p", "no_equals_sign"},
+      {"sample", file, "-n", "-1"},
+      {"sample", file, "-s", "-1"},
+      {"sample", file, "--threads", "0"},
+      {"sample", file, "--max-attempts", "0"},
+      {"sample", file, "--start", "18446744073709551615", "-n", "2"},
+      {"stats", file, "-n", "many"},
+  };
+  for (const auto& args : bad_command_lines) {
+    const Result r = Run(args);
+    std::string joined;
+    for (const auto& a : args) joined += a + " ";
+    EXPECT_EQ(r.exit_code, 2) << joined << "\n" << r.err;
+    EXPECT_NE(r.err.find("prs: error: "), std::string::npos) << joined << "\n" << r.err;
+  }
+  EXPECT_NE(Run({"sampel", file}).err.find("did you mean 'sample'?"), std::string::npos);
+}
+
+TEST_F(PrsTest, HelpExitsZero) {
+  const Result r = Run({"--help"});
+  EXPECT_EQ(r.exit_code, 0);
+  for (const char* command : {"sample", "check", "stats"}) {
+    EXPECT_NE(r.out.find(command), std::string::npos) << r.out;
+  }
+  EXPECT_EQ(Run({"sample", "--help"}).exit_code, 0);
+}
+
+TEST_F(PrsTest, SamplingFailureExitsThreeWithALocatedMessage) {
+  const std::string file =
+      Write("fail.prs", "from model import *\nt = Table on floor\nrequire t.z > 5\n");
+  const Result r = Run({"sample", file, "-I", Example(""), "--max-attempts", "50"});
+  EXPECT_EQ(r.exit_code, 3);
+  EXPECT_NE(r.err.find(file + ":3:1: error: "), std::string::npos) << r.err;
+  EXPECT_TRUE(r.out.empty());
+  EXPECT_EQ(Run({"stats", file, "-I", Example(""), "--max-attempts", "50"}).exit_code, 3);
+}
+
+TEST_F(PrsTest, OutputFileGetsCompleteLinesAndNoPartialFile) {
+  const fs::path out = dir_ / "scenes.jsonl";
+  const Result r = Run({"sample", Example("table_cube.prs"), "-n", "7", "-o", out.string()});
+  EXPECT_EQ(r.exit_code, 0) << r.err;
+  EXPECT_TRUE(r.out.empty());
+  EXPECT_EQ(ParseSceneIndices(ReadText(out)), (std::vector<uint64_t>{0, 1, 2, 3, 4, 5, 6}));
+  EXPECT_FALSE(fs::exists(out.string() + ".partial"));
+}
+
+// Scenes fail now and then within 2 attempts: the ones before the first failure are kept in
+// OUT.partial, the same ones stdout gets, and OUT is not created.
+TEST_F(PrsTest, OutputFileAfterAFailureKeepsTheEarlierScenesInPartial) {
+  const std::string file = Write("flaky.prs", "x = Range(0, 1)\nrequire x > 0.8\n");
+  const fs::path out = dir_ / "scenes.jsonl";
+  const std::vector<std::string> args = {"sample", file, "-n", "100", "--max-attempts", "2"};
+  const Result to_stdout = Run(args);
+  std::vector<std::string> with_file = args;
+  with_file.insert(with_file.end(), {"-o", out.string()});
+  const Result to_file = Run(with_file);
+  EXPECT_EQ(to_stdout.exit_code, 3);
+  EXPECT_EQ(to_file.exit_code, 3);
+  EXPECT_FALSE(fs::exists(out));
+  EXPECT_EQ(ReadText(out.string() + ".partial"), to_stdout.out);
+  EXPECT_NE(to_file.err.find(".partial"), std::string::npos) << to_file.err;
+}
+
+TEST_F(PrsTest, UnwritableOutputIsAnError) {
+  const Result r =
+      Run({"sample", Example("table_cube.prs"), "-o", (dir_ / "no/such/dir/x").string()});
+  EXPECT_EQ(r.exit_code, 1);
+  EXPECT_NE(r.err.find("prs: error: cannot create"), std::string::npos) << r.err;
+}
+
+TEST_F(PrsTest, TerminationKeepsCompleteLinesAndSaysWhereToResume) {
+  const fs::path out = dir_ / "scenes.jsonl";
+  const std::string prs = Quote(PRS_BINARY);
+  // Kill once lines have arrived, so the handlers are surely installed (at most ~10 s).
+  const std::string partial = Quote(out.string() + ".partial");
+  const std::string script = prs + " sample " + Quote(Example("table_cube.prs")) +
+                             " -n 100000000 -o " + Quote(out.string()) + " 2>" +
+                             Quote((dir_ / "err.txt").string()) + " & pid=$!; i=0; while [ ! -s " +
+                             partial + " ] && [ $i -lt 100 ]; do sleep 0.1; i=$((i+1)); done; " +
+                             "kill -TERM $pid; wait $pid; echo $? >" +
+                             Quote((dir_ / "rc.txt").string());
+  ASSERT_EQ(std::system(("sh -c " + Quote(script)).c_str()), 0);
+  EXPECT_EQ(ReadText(dir_ / "rc.txt"), "143\n");  // 128 + SIGTERM
+  EXPECT_FALSE(fs::exists(out));
+  const std::vector<uint64_t> indices = ParseSceneIndices(ReadText(out.string() + ".partial"));
+  EXPECT_NE(
+      ReadText(dir_ / "err.txt").find("resume with --start " + std::to_string(indices.size())),
+      std::string::npos)
+      << ReadText(dir_ / "err.txt");
+}
+
+TEST_F(PrsTest, CheckPrintsTheOutline) {
+  const Result r = Run({"check", Example("table_cube.prs")});
+  EXPECT_EQ(r.exit_code, 0) << r.err;
+  for (const char* expected :
+       {"table_cube.prs: ok (2 modules", "7 creation sites", "tr_1", "Tray",
+        "completely on, ahead of, left of", "region (plane ∩ half-spaces",
+        "observed over 20 scenes", "Camera", "position", "classes", "model.prs:"}) {
+    EXPECT_NE(r.out.find(expected), std::string::npos) << expected << "\n" << r.out;
+  }
+}
+
+TEST_F(PrsTest, StatsJsonHasCountsThatAddUp) {
+  const std::string file = Write("req.prs", kRequirementProgram);
+  const Result r = Run({"stats", file, "-I", Example(""), "-n", "200", "--json"});
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  const json stats = json::parse(r.out);
+  EXPECT_EQ(stats["format"], "prs-stats/1");
+  EXPECT_EQ(stats["scenes"], 200);
+  const int64_t rejections = stats["rejections"]["total"];
+  EXPECT_GT(rejections, 0);
+  EXPECT_EQ(stats["attempts"].get<int64_t>(), 200 + rejections);
+  int64_t by_reason = 0, by_culprit = 0;
+  for (const auto& [reason, n] : stats["rejections"]["by_reason"].items())
+    by_reason += n.get<int64_t>();
+  for (const json& culprit : stats["rejections"]["by_culprit"])
+    by_culprit += culprit["count"].get<int64_t>();
+  EXPECT_EQ(by_reason, rejections);
+  EXPECT_EQ(by_culprit, rejections);
+  const json& top = stats["rejections"]["by_culprit"][0];
+  EXPECT_EQ(top["reason"], "requirement");
+  EXPECT_EQ(top["file"], file);
+  EXPECT_EQ(top["line"], 4);
+  EXPECT_NEAR(stats["acceptance_rate"].get<double>(), 200.0 / (200 + rejections), 1e-12);
+}
+
+TEST_F(PrsTest, StatsTableLocatesTheCulprit) {
+  const std::string file = Write("req.prs", kRequirementProgram);
+  const Result r = Run({"stats", file, "-I", Example(""), "-n", "50"});
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  for (const std::string& expected :
+       {std::string("acceptance rate"), std::string("rejections by reason"),
+        std::string("rejections by culprit"), file + ":4:1"}) {
+    EXPECT_NE(r.out.find(expected), std::string::npos) << expected << "\n" << r.out;
+  }
+}
+
+}  // namespace
+}  // namespace prs::cli

@@ -1,0 +1,79 @@
+// The scene JSON writer: valid JSON in the spec §8 layout and key order, floats that stay
+// floats, escaped and repaired strings, non-finite numbers as null.
+#include "output/scene_json.h"
+
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <limits>
+#include <nlohmann/json.hpp>
+
+namespace prs::output {
+namespace {
+
+using nlohmann::json;
+
+sampling::SampledScene MakeScene(const lang::ClassInfo& cls) {
+  sampling::SampledScene sampled;
+  sampled.seed = 7;
+  sampled.index = 3;
+  sampled.attempts = 2;
+  sampled.rejections.Add({lang::RejectionKind::kCollision, "a and b", {}, "", false});
+  lang::SceneObject o;
+  o.name = "tr_1";
+  o.cls = &cls;
+  o.p_WO = {1.0, -0.25, 0.1};
+  o.dimensions = {0.24, 0.45, 0.03};
+  o.properties = {{"position", lang::Value(o.p_WO)},
+                  {"color", lang::MakeString("grey")},
+                  {"label", lang::MakeString("say \"hi\"\n\xff")},
+                  {"mass", lang::Value(std::numeric_limits<double>::quiet_NaN())},
+                  {"tags", lang::MakeList({lang::Value(1.0), lang::Value(true), lang::Value()})}};
+  sampled.scene.objects.push_back(o);
+  lang::SceneObject anonymous = o;
+  anonymous.name.reset();
+  sampled.scene.objects.push_back(anonymous);
+  sampled.scene.params = {{"n", lang::Value(3.0)}};
+  return sampled;
+}
+
+TEST(SceneJsonTest, FollowsTheSpecLayout) {
+  lang::ClassInfo tray;
+  tray.name = "Tray";
+  const std::string line = FormatSceneJson(MakeScene(tray));
+  EXPECT_EQ(line.find('\n'), std::string::npos);
+  EXPECT_EQ(line.rfind("{\"format\":\"prs-scene/1\",\"seed\":7,\"index\":3,\"attempts\":2,"
+                       "\"rejections\":{\"collision\":1},\"params\":{\"n\":3.0},",
+                       0),
+            0u)
+      << line;
+  const json scene = json::parse(line);
+  const json& o = scene["objects"][0];
+  EXPECT_EQ(o["name"], "tr_1");
+  EXPECT_TRUE(scene["objects"][1]["name"].is_null());
+  EXPECT_EQ(o["class"], "Tray");
+  EXPECT_EQ(o["position"], json({1.0, -0.25, 0.1}));
+  EXPECT_TRUE(o["position"][0].is_number_float());
+  EXPECT_EQ(o["orientation"]["quaternion"], json({1.0, 0.0, 0.0, 0.0}));
+  EXPECT_EQ(o["orientation"]["yaw_pitch_roll"].size(), 3u);
+  EXPECT_EQ(o["dimensions"], json({0.24, 0.45, 0.03}));
+  EXPECT_FALSE(o["properties"].contains("position"));
+  EXPECT_EQ(o["properties"]["color"], "grey");
+  EXPECT_EQ(o["properties"]["label"], "say \"hi\"\n\xEF\xBF\xBD");
+  EXPECT_TRUE(o["properties"]["mass"].is_null());
+  EXPECT_EQ(o["properties"]["tags"], json({1.0, true, nullptr}));
+}
+
+TEST(SceneJsonTest, NumbersRoundTripExactly) {
+  lang::ClassInfo cube;
+  cube.name = "Cube";
+  sampling::SampledScene sampled = MakeScene(cube);
+  sampled.scene.objects[0].p_WO = {0.1 + 0.2, 1e-300, -0.0};
+  const json scene = json::parse(FormatSceneJson(sampled));
+  EXPECT_EQ(scene["objects"][0]["position"][0].get<double>(), 0.1 + 0.2);
+  EXPECT_EQ(scene["objects"][0]["position"][1].get<double>(), 1e-300);
+  EXPECT_TRUE(std::signbit(scene["objects"][0]["position"][2].get<double>()));
+}
+
+}  // namespace
+}  // namespace prs::output
