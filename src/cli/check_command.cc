@@ -21,12 +21,7 @@ struct CheckArgs {
 
 VariationObserver ObserveScenes(const lang::CompiledProgram& program, const CheckArgs& args,
                                 const std::atomic<bool>& cancel) {
-  sampling::BatchOptions options;
-  options.sample = MakeSampleOptions(args.sampling);
-  options.seed = args.sampling.seed;
-  options.count = args.count;
-  options.threads = args.sampling.threads;
-  options.cancel = &cancel;
+  sampling::BatchOptions options = MakeBatchOptions(args.sampling, args.count, cancel);
   VariationObserver observer;
   sampling::SampleBatch(program, options,
                         {.prepare = {}, .consume = [&](sampling::BatchScene&& scene) {

@@ -137,6 +137,17 @@ sampling::SampleOptions MakeSampleOptions(const SamplingArgs& args) {
   return options;
 }
 
+sampling::BatchOptions MakeBatchOptions(const SamplingArgs& args, int64_t count,
+                                        const std::atomic<bool>& cancel) {
+  sampling::BatchOptions options;
+  options.sample = MakeSampleOptions(args);
+  options.seed = args.seed;
+  options.count = count;
+  options.threads = args.threads;
+  options.cancel = &cancel;
+  return options;
+}
+
 int ReportScenarioError(const lang::ScenarioError& error, const lang::SourceManager& sources) {
   std::cerr << lang::RenderDiagnostic(error.diagnostic(), sources, UseColor());
   return error.diagnostic().id == "sampling-failed" ? kExitSamplingFailure : kExitScenarioError;

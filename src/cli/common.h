@@ -3,6 +3,7 @@
 #pragma once
 
 #include <CLI/CLI.hpp>
+#include <atomic>
 #include <cstdint>
 #include <memory>
 #include <string>
@@ -10,6 +11,7 @@
 #include <vector>
 
 #include "lang/lang.h"
+#include "sampling/batch.h"
 #include "sampling/sampler.h"
 
 namespace prs::cli {
@@ -58,6 +60,9 @@ int CountHardwareThreads();
 std::unique_ptr<lang::CompiledProgram> CompileScenario(const ScenarioArgs& args);
 
 sampling::SampleOptions MakeSampleOptions(const SamplingArgs& args);
+/// Batch options for scenes 0..count-1 of the seed in `args`, stopped when `cancel` is set.
+sampling::BatchOptions MakeBatchOptions(const SamplingArgs& args, int64_t count,
+                                        const std::atomic<bool>& cancel);
 
 /// Prints the diagnostic of a failed run and returns its exit code: kExitSamplingFailure for
 /// "sampling-failed", kExitScenarioError for anything else.

@@ -28,12 +28,7 @@ SamplingStats MeasureSampling(const lang::CompiledProgram& program, const StatsA
   stats.file = args.scenario.file;
   stats.seed = args.sampling.seed;
   stats.naive = args.sampling.naive;
-  sampling::BatchOptions options;
-  options.sample = MakeSampleOptions(args.sampling);
-  options.seed = args.sampling.seed;
-  options.count = args.count;
-  options.threads = args.sampling.threads;
-  options.cancel = &cancel;
+  sampling::BatchOptions options = MakeBatchOptions(args.sampling, args.count, cancel);
   stats.threads = sampling::CountBatchThreads(options);
   ProgressBar progress(args.count, IsStderrTerminal());
   int64_t done = 0;
