@@ -56,10 +56,16 @@ std::string Repr(const Value& v) {
   if (const auto* x = std::get_if<double>(&v.data)) return FormatNumber(*x);
   if (const auto* s = std::get_if<StringPtr>(&v.data)) return "'" + **s + "'";
   if (const auto* p = std::get_if<Eigen::Vector3d>(&v.data)) {
-    return "(" + FormatNumber(p->x()) + ", " + FormatNumber(p->y()) + ", " + FormatNumber(p->z()) + ")";
+    // Appending to a named string (not "(" + temporary) also avoids a GCC 12 -Wrestrict
+    // false positive.
+    std::string text = "(";
+    text += FormatNumber(p->x()) + ", " + FormatNumber(p->y()) + ", " + FormatNumber(p->z()) + ")";
+    return text;
   }
   if (const auto* t = std::get_if<std::shared_ptr<TupleData>>(&v.data)) {
-    return "(" + JoinRepr((*t)->elements) + ((*t)->elements.size() == 1 ? ",)" : ")");
+    std::string text = "(";
+    text += JoinRepr((*t)->elements) + ((*t)->elements.size() == 1 ? ",)" : ")");
+    return text;
   }
   if (const auto* l = std::get_if<std::shared_ptr<ListData>>(&v.data)) {
     return "[" + JoinRepr((*l)->elements) + "]";

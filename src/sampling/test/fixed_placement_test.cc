@@ -62,10 +62,12 @@ TEST(FixedPlacementTest, SameLawAsNaiveRejection) {
   SceneSampler region_sampler(*program), naive_sampler(*program, naive);
   std::vector<double> region_x, region_y, naive_x, naive_y;
   for (uint64_t i = 0; i < 2000; ++i) {
-    const SceneObject& a = Find(region_sampler.Sample(11, i).scene, "tr");
+    const Scene region_scene = region_sampler.Sample(11, i).scene;
+    const SceneObject& a = Find(region_scene, "tr");
     region_x.push_back(a.p_WO.x());
     region_y.push_back(a.p_WO.y());
-    const SceneObject& b = Find(naive_sampler.Sample(12, i).scene, "tr");
+    const Scene naive_scene = naive_sampler.Sample(12, i).scene;
+    const SceneObject& b = Find(naive_scene, "tr");
     naive_x.push_back(b.p_WO.x());
     naive_y.push_back(b.p_WO.y());
   }
