@@ -189,16 +189,9 @@ struct RegionParts {
       case SpecifierKind::kAlignedWith:
         ++planes;
         break;
-      case SpecifierKind::kLeftOf:
-      case SpecifierKind::kRightOf:
-      case SpecifierKind::kAheadOf:
-      case SpecifierKind::kBehind:
-      case SpecifierKind::kAbove:
-      case SpecifierKind::kBelow:
-        ++half_spaces;
-        break;
       default:
-        break;  // not a position specifier
+        if (lang::IsSideSpecifier(s.kind)) ++half_spaces;
+        break;
     }
   }
 

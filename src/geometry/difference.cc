@@ -63,8 +63,12 @@ ConvexRegion CalcBoxOverlapRegion(const OrientedBox& obstacle, const Matrix3d& R
   return ConvexRegion::FromHalfSpaces(half_spaces);
 }
 
+bool DoesRegionOverlap(const ConvexRegion& a, const ConvexRegion& b) {
+  return HasFullDimension(Intersect(a, b), a);
+}
+
 std::vector<ConvexRegion> CalcRegionDifference(const ConvexRegion& a, const ConvexRegion& b) {
-  if (!HasFullDimension(Intersect(a, b), a)) return {a};
+  if (!DoesRegionOverlap(a, b)) return {a};
   std::vector<ConvexRegion> pieces;
   ConvexRegion inside_earlier = a;  // a within facets 0..i-1 of b
   for (const HalfSpace& h : b.half_spaces()) {

@@ -18,6 +18,10 @@ namespace prs::geometry {
 ConvexRegion CalcBoxOverlapRegion(const OrientedBox& obstacle, const Eigen::Matrix3d& R_WM,
                                   const Eigen::Vector3d& half_moving, double tolerance = 1e-6);
 
+/// Whether `b` covers part of `a` with a positive measure in a's own dimension (not just a
+/// touching face or edge).
+bool DoesRegionOverlap(const ConvexRegion& a, const ConvexRegion& b);
+
 /// `a` minus the interior of `b`, as convex pieces with disjoint interiors whose union is the
 /// difference; pieces of lower dimension than `a` are dropped. Piece i lies outside facet i of
 /// b and inside facets 0..i-1, so there are at most as many pieces as b has half-spaces.

@@ -21,6 +21,12 @@ std::string_view SideName(Side side) {
   return "?";
 }
 
+bool IsSideSpecifier(SpecifierKind kind) {
+  return kind == SpecifierKind::kLeftOf || kind == SpecifierKind::kRightOf ||
+         kind == SpecifierKind::kAheadOf || kind == SpecifierKind::kBehind ||
+         kind == SpecifierKind::kAbove || kind == SpecifierKind::kBelow;
+}
+
 std::string_view SpecifierName(SpecifierKind kind) {
   switch (kind) {
     case SpecifierKind::kWith: return "with";

@@ -229,6 +229,8 @@ struct Module {
 std::string_view SideName(Side side);
 /// Returns the source spelling of a specifier's keywords, e.g. "completely on".
 std::string_view SpecifierName(SpecifierKind kind);
+/// left of, right of, ahead of, behind, above, below: a half-space beside the target.
+bool IsSideSpecifier(SpecifierKind kind);
 /// Returns the source spelling of a binary operator, e.g. "not in".
 std::string_view BinaryOpName(BinaryOp op);
 

@@ -5,7 +5,6 @@
 // the result to cut fixed obstacles out of fixed position regions (placement_fixed.cc), which
 // is exact because the fraction cut away is then the same in every scene.
 #include <map>
-#include <optional>
 #include <set>
 
 #include "lang/builtins.h"
@@ -125,6 +124,8 @@ class FixedAnalysis {
   }
 
   Info Lookup(const std::string& name, int m) const {
+    // `self` appears only in class defaults, whose `self.NAME` reads DefaultFixed checks.
+    if (name == "self") return {true, Kind::kObject};
     auto it = envs_[m].find(name);
     if (it != envs_[m].end()) return it->second;
     if (FindGlobalBuiltin(name)) return Info{true, Kind::kOther};
@@ -280,14 +281,7 @@ bool FixedAnalysis::DefaultFixed(const PropertyDefault& d,
     auto it = props.find(read);
     if (it == props.end() || !it->second) return false;
   }
-  // `self` is not a global, so reads of it look random here; judge the rest of the expression
-  // by temporarily binding `self` as fixed.
-  Env& env = envs_[d.module_index];
-  const auto saved = env.find("self") == env.end() ? std::optional<Info>() : env["self"];
-  env["self"] = Info{true, Kind::kObject};
-  const bool fixed = Analyze(*d.expr, d.module_index, false).fixed;
-  if (saved) env["self"] = *saved; else env.erase("self");
-  return fixed;
+  return Analyze(*d.expr, d.module_index, false).fixed;
 }
 
 bool FixedAnalysis::StepFixed(const PlanStep& step, const std::map<std::string, bool>& props,

@@ -4,7 +4,6 @@
 #include <stdexcept>
 
 #include "lang/interp_internal.h"
-#include "lang/run_cache.h"
 
 namespace prs::lang {
 
@@ -293,14 +292,4 @@ int64_t Interpreter::DrawInt(int64_t lo, int64_t hi) {
 }
 
 }  // namespace internal
-}  // namespace prs::lang
-
-namespace prs::lang {
-
-void RunCacheDeleter::operator()(RunCache* cache) const { delete cache; }
-
-std::unique_ptr<RunCache, RunCacheDeleter> MakeRunCache() {
-  return std::unique_ptr<RunCache, RunCacheDeleter>(new RunCache());
-}
-
 }  // namespace prs::lang

@@ -30,7 +30,7 @@ struct PositionConstraint {
   bool is_point = false;
   Eigen::Vector3d p_W = Eigen::Vector3d::Zero();
   geometry::ConvexRegion region = geometry::ConvexRegion::All();
-  std::string description;  // e.g. "completely on tr_1 (top 0.24 m x 0.45 m)"
+  int target_object = -1;  // `on`/`completely on` an object: its index, for messages
 };
 
 class Interpreter {

@@ -21,10 +21,7 @@ std::string Format(double x) {
 }
 
 bool IsRelativeSpecifier(SpecifierKind kind) {
-  return kind == SpecifierKind::kLeftOf || kind == SpecifierKind::kRightOf ||
-         kind == SpecifierKind::kAheadOf || kind == SpecifierKind::kBehind ||
-         kind == SpecifierKind::kAbove || kind == SpecifierKind::kBelow ||
-         kind == SpecifierKind::kAlignedWith;
+  return IsSideSpecifier(kind) || kind == SpecifierKind::kAlignedWith;
 }
 
 // The affine hull of a lower-dimensional region, as a region (naive mode's sampling domain).
@@ -196,6 +193,7 @@ PositionConstraint Interpreter::EvalOnConstraint(const Specifier& s, int index, 
   const Value target = Eval(*s.target);
   const std::string what = "the argument of '" + std::string(SpecifierName(s.kind)) + "'";
   if (const auto* ref = std::get_if<ObjectRef>(&target.data)) {
+    c.target_object = ref->index;
     const SceneObject& x = scene_.objects[ref->index];
     const Matrix3d R_WX = x.R_WO.toRotationMatrix();
     const Vector3d up = R_WX.col(2);
@@ -289,11 +287,10 @@ std::string Interpreter::DescribeFootprintMismatch(const PositionConstraint& c, 
   const Vector3d& dims = o.dimensions;
   std::string text = ": its footprint (" + Format(dims.x()) + " m x " + Format(dims.y()) +
                      " m for its orientation) does not fit on the surface below it";
-  const Value target = Eval(*c.specifier->target);
-  if (const auto* ref = std::get_if<ObjectRef>(&target.data)) {
-    const SceneObject& x = scene_.objects[ref->index];
-    text += " (" + x.DisplayName(ref->index) + "'s top is " + Format(x.dimensions.x()) + " m x " +
-            Format(x.dimensions.y()) + " m)";
+  if (c.target_object >= 0) {
+    const SceneObject& x = scene_.objects[c.target_object];
+    text += " (" + x.DisplayName(c.target_object) + "'s top is " + Format(x.dimensions.x()) +
+            " m x " + Format(x.dimensions.y()) + " m)";
   }
   return text;
 }

@@ -7,6 +7,16 @@
 #include "geometry/difference.h"
 #include "lang/interp_internal.h"
 
+namespace prs::lang {
+
+void RunCacheDeleter::operator()(RunCache* cache) const { delete cache; }
+
+std::unique_ptr<RunCache, RunCacheDeleter> MakeRunCache() {
+  return std::unique_ptr<RunCache, RunCacheDeleter>(new RunCache());
+}
+
+}  // namespace prs::lang
+
 namespace prs::lang::internal {
 
 using Eigen::Vector3d;
@@ -63,8 +73,7 @@ std::shared_ptr<const FixedPlacement> Interpreter::BuildFixedPlacement(
     std::vector<ConvexRegion> next;
     bool overlaps = false;
     for (const ConvexRegion& piece : pieces) {
-      const ConvexRegion common = geometry::Intersect(piece, forbidden);
-      if (common.IsEmpty() || common.dimension() < piece.dimension()) {
+      if (!geometry::DoesRegionOverlap(piece, forbidden)) {
         next.push_back(piece);
         continue;
       }

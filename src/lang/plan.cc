@@ -28,20 +28,11 @@ bool IsOrientationSpecifier(const Specifier& s) {
 
 // Properties of the object itself that a position specifier reads.
 std::vector<std::string> PositionReads(const Specifier& s) {
-  switch (s.kind) {
-    case SpecifierKind::kOn:
-      return {"height"};
-    case SpecifierKind::kCompletelyOn:
-    case SpecifierKind::kLeftOf:
-    case SpecifierKind::kRightOf:
-    case SpecifierKind::kAheadOf:
-    case SpecifierKind::kBehind:
-    case SpecifierKind::kAbove:
-    case SpecifierKind::kBelow:
-      return {"width", "length", "height", "orientation"};
-    default:
-      return {};
+  if (s.kind == SpecifierKind::kOn) return {"height"};
+  if (s.kind == SpecifierKind::kCompletelyOn || IsSideSpecifier(s.kind)) {
+    return {"width", "length", "height", "orientation"};
   }
+  return {};
 }
 
 struct Source {
