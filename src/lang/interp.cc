@@ -37,6 +37,7 @@ AttemptResult Interpreter::Run() {
   try {
     RunModule(program_.main_module);
     CheckWorkspace();
+    if (naive_violation_) throw RejectSignal{std::move(*naive_violation_)};
   } catch (RejectSignal& signal) {
     signal.rejection.certain = draws_ == 0;
     return std::move(signal.rejection);

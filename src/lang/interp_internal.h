@@ -4,6 +4,7 @@
 // creation plans and scene checks), placement.cc (position regions and sampling).
 #pragma once
 
+#include <optional>
 #include <string>
 #include <unordered_map>
 #include <vector>
@@ -31,6 +32,9 @@ struct PositionConstraint {
   Eigen::Vector3d p_W = Eigen::Vector3d::Zero();
   geometry::ConvexRegion region = geometry::ConvexRegion::All();
   int target_object = -1;  // `on`/`completely on` an object: its index, for messages
+  /// Naive mode only: where a lower-dimensional specifier's draw comes from when it differs
+  /// from `region` (for `completely on`, the whole face before erosion).
+  std::optional<geometry::ConvexRegion> naive_domain;
 };
 
 class Interpreter {
@@ -173,6 +177,9 @@ class Interpreter {
   int call_depth_ = 0;
   int64_t loop_iterations_ = 0;
   int64_t draws_ = 0;
+  // Naive mode: the first specifier found not to hold. As in the paper's tool, specifiers are
+  // checked as constraints once the scene is complete, after collisions and the workspace.
+  std::optional<Rejection> naive_violation_;
   Value return_value_;
 };
 
