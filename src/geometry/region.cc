@@ -352,7 +352,9 @@ bool ConvexRegion::Contains(const Eigen::Vector3d& p_W, double tolerance) const 
 }
 
 bool ConvexRegion::ContainsBox(const OrientedBox& box, double tolerance) const {
-  if (IsEmpty() || !Contains(box.p_center, tolerance)) return false;
+  // Contains() proves non-emptiness on its own, mostly without canonicalizing the region
+  // (the workspace is checked in every scene, so this matters for speed).
+  if (!Contains(box.p_center, tolerance)) return false;
   AffineHull eq_hull;
   if (!internal::CalcEqualityHull(equalities_, &eq_hull)) return false;
   const Eigen::Matrix3d P = eq_hull.basis * eq_hull.basis.transpose();

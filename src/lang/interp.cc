@@ -53,10 +53,42 @@ AttemptResult Interpreter::Run() {
 void Interpreter::RunModule(int module_index) {
   if (module_ran_[module_index]) return;
   module_ran_[module_index] = true;
+  const bool cacheable = options_.cache && module_index != program_.main_module;
+  if (cacheable) {
+    auto it = options_.cache->module_globals.find(module_index);
+    if (it != options_.cache->module_globals.end()) {
+      module_envs_[module_index] = it->second;
+      return;
+    }
+  }
+  const int64_t draws_before = draws_;
+  const size_t objects_before = scene_.objects.size(), params_before = scene_.params.size();
   const int saved = current_module_;
   current_module_ = module_index;
   ExecBody(program_.modules[module_index]->ast.body);
   current_module_ = saved;
+  if (cacheable && draws_ == draws_before && scene_.objects.size() == objects_before &&
+      scene_.params.size() == params_before && IsSameInEveryScene(module_envs_[module_index])) {
+    options_.cache->module_globals[module_index] = module_envs_[module_index];
+  }
+}
+
+// Whether a module's globals can be shared by later scenes: no value that a scene can change
+// (lists, dicts), that refers to this scene's objects, or that remembers a draw (tuples).
+bool Interpreter::IsSameInEveryScene(const Env& env) {
+  for (const auto& [name, value] : env) {
+    const bool shareable = std::visit(
+        [](const auto& v) {
+          using T = std::decay_t<decltype(v)>;
+          return !std::is_same_v<T, ObjectRef> && !std::is_same_v<T, BoundMethod> &&
+                 !std::is_same_v<T, std::shared_ptr<TupleData>> &&
+                 !std::is_same_v<T, std::shared_ptr<ListData>> &&
+                 !std::is_same_v<T, std::shared_ptr<DictData>>;
+        },
+        value.data);
+    if (!shareable) return false;
+  }
+  return true;
 }
 
 Flow Interpreter::ExecBody(const std::vector<StmtPtr>& body) {

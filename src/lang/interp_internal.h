@@ -41,6 +41,7 @@ class Interpreter {
  public:
   Interpreter(const CompiledProgram& program, geometry::Rng& rng, const RunOptions& options);
   AttemptResult Run();
+  static bool IsSameInEveryScene(const Env& env);
 
   // --- expressions (eval.cc) ---
   Value Eval(const Expr& expr);

@@ -2,6 +2,8 @@
 // the sampled values, checked here with plain arithmetic independent of the sampler's regions.
 #include <gtest/gtest.h>
 
+#include <set>
+
 #include "sampling/test/scene_checks.h"
 
 namespace prs::sampling {
@@ -50,6 +52,32 @@ TEST(ScenarioTest, ParamOverrideForAnUndeclaredNameIsAnError) {
   EXPECT_EQ(diagnostics.diagnostics()[0].id, "unknown-param");
   EXPECT_EQ(diagnostics.diagnostics()[0].message,
             "-p lable=x: the program declares no param 'lable'; did you mean 'label'?");
+}
+
+
+// Imported modules that draw nothing are run once per sampler and their globals shared
+// (RunCache::module_globals); what a scene can change or draw must still differ per scene.
+TEST(ScenarioTest, SharedModuleGlobalsStillVaryPerScene) {
+  auto program = CompileOrDie("from shared_values import *\n"
+                              "from random_module import *\n"
+                              "param drawn = size + 0\n"
+                              "param moved = offset\n"
+                              "b = Box at Vector3D(offset, 0, 0.5)\n",
+                              "tests/lang/modules/main.prs");
+  ASSERT_NE(program, nullptr);
+  SceneSampler sampler(*program);
+  std::set<double> sizes, offsets;
+  for (uint64_t i = 0; i < 20; ++i) {
+    const SampledScene s = sampler.Sample(4, i);
+    ASSERT_EQ(s.scene.params.size(), 2u);
+    sizes.insert(s.scene.params[0].second.As<double>());    // a tuple from the module
+    offsets.insert(s.scene.params[1].second.As<double>());  // a draw in the module
+    EXPECT_EQ(Find(s.scene, "b").dimensions.x(), 0.1);
+    // Cached or not, the scene is the same as a fresh sampler's.
+    EXPECT_EQ(Find(s.scene, "b").p_WO, Find(SampleScene(*program, 4, i).scene, "b").p_WO);
+  }
+  EXPECT_EQ(sizes.size(), 20u);
+  EXPECT_EQ(offsets.size(), 20u);
 }
 
 }  // namespace
