@@ -73,20 +73,23 @@ void Interpreter::RunModule(int module_index) {
   }
 }
 
-// Whether a module's globals can be shared by later scenes: no value that a scene can change
-// (lists, dicts), that refers to this scene's objects, or that remembers a draw (tuples).
+// Whether a value can be shared by later scenes: not one that a scene can change (lists,
+// dicts), that refers to this scene's objects, or that remembers a draw (tuples).
+bool Interpreter::IsSameInEveryScene(const Value& value) {
+  return std::visit(
+      [](const auto& v) {
+        using T = std::decay_t<decltype(v)>;
+        return !std::is_same_v<T, ObjectRef> && !std::is_same_v<T, BoundMethod> &&
+               !std::is_same_v<T, std::shared_ptr<TupleData>> &&
+               !std::is_same_v<T, std::shared_ptr<ListData>> &&
+               !std::is_same_v<T, std::shared_ptr<DictData>>;
+      },
+      value.data);
+}
+
 bool Interpreter::IsSameInEveryScene(const Env& env) {
   for (const auto& [name, value] : env) {
-    const bool shareable = std::visit(
-        [](const auto& v) {
-          using T = std::decay_t<decltype(v)>;
-          return !std::is_same_v<T, ObjectRef> && !std::is_same_v<T, BoundMethod> &&
-                 !std::is_same_v<T, std::shared_ptr<TupleData>> &&
-                 !std::is_same_v<T, std::shared_ptr<ListData>> &&
-                 !std::is_same_v<T, std::shared_ptr<DictData>>;
-        },
-        value.data);
-    if (!shareable) return false;
+    if (!IsSameInEveryScene(value)) return false;
   }
   return true;
 }

@@ -41,6 +41,7 @@ class Interpreter {
  public:
   Interpreter(const CompiledProgram& program, geometry::Rng& rng, const RunOptions& options);
   AttemptResult Run();
+  static bool IsSameInEveryScene(const Value& value);
   static bool IsSameInEveryScene(const Env& env);
 
   // --- expressions (eval.cc) ---
@@ -146,6 +147,9 @@ class Interpreter {
       int index, SourceSpan span);
   std::vector<int> FixedObstacles(int index) const;
   Eigen::Vector3d SampleFixed(const FixedPlacement& placement);
+  // Fixed objects (ObjectPlan::object_fixed) built once per RunCache and copied afterwards.
+  const SceneObject* CachedFixedObject(const ObjectPlan& plan) const;
+  void StoreFixedObject(const ObjectPlan& plan, int index, int64_t draws_before);
   Eigen::Vector3d SampleNaive(const std::vector<PositionConstraint>& constraints, int index,
                               SourceSpan span);
   // Why no position fits: the empty specifier with the sizes involved, or every region.

@@ -15,6 +15,14 @@ Value Interpreter::CreateObject(const ObjectPlan& plan, SourceSpan span) {
                                      " objects in one scene; is a loop creating too many?");
   }
   const int index = static_cast<int>(scene_.objects.size());
+  if (const SceneObject* cached = CachedFixedObject(plan)) {
+    pending_name_ = nullptr;
+    scene_.objects.push_back(*cached);
+    completed_.push_back(false);
+    FinishObject(index, span);  // an earlier random object may still collide with it
+    return ObjectRef{index};
+  }
+  const int64_t draws_before = draws_;
   SceneObject object;
   object.cls = plan.cls;
   object.span = span;
@@ -33,6 +41,7 @@ Value Interpreter::CreateObject(const ObjectPlan& plan, SourceSpan span) {
     }
   }
   FinishObject(index, span);
+  StoreFixedObject(plan, index, draws_before);
   return ObjectRef{index};
 }
 

@@ -27,6 +27,8 @@ class RunCache {
   /// left only immutable values, by module index: such a module binds the same values in every
   /// scene, and sharing them keeps derived data (a workspace's vertices) across scenes.
   std::unordered_map<int, std::unordered_map<std::string, Value>> module_globals;
+  /// Objects of fixed creation sites (ObjectPlan::object_fixed), as first built.
+  std::unordered_map<const ObjectPlan*, SceneObject> fixed_objects;
 };
 
 }  // namespace prs::lang

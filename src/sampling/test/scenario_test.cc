@@ -80,5 +80,31 @@ TEST(ScenarioTest, SharedModuleGlobalsStillVaryPerScene) {
   EXPECT_EQ(offsets.size(), 20u);
 }
 
+
+// Fixed objects are built once per sampler and copied (RunCache::fixed_objects): the scenes
+// and their rejections must be those of fresh samplers, also when a random object placed
+// before a fixed one collides with it, and when a fixed object's specifier creates another.
+TEST(ScenarioTest, CachedFixedObjectsGiveTheScenesOfAFreshSampler) {
+  auto program = CompileOrDie("from model import *\n"
+                              "c = Cube at Vector3D(Range(-1.4, 1.4), 0, 0.5)\n"
+                              "t = Table on Vector3D(0, 0, 0)\n"
+                              "g = Gear on (Plate on Vector3D(1, 1, 0))\n");
+  ASSERT_NE(program, nullptr);
+  SceneSampler sampler(*program);
+  int64_t rejections = 0;
+  for (uint64_t i = 0; i < 30; ++i) {
+    const SampledScene cached = sampler.Sample(6, i);
+    const SampledScene fresh = SampleScene(*program, 6, i);
+    ASSERT_EQ(cached.scene.objects.size(), 4u);
+    EXPECT_EQ(cached.attempts, fresh.attempts);
+    for (size_t k = 0; k < 4; ++k) {
+      EXPECT_EQ(cached.scene.objects[k].p_WO, fresh.scene.objects[k].p_WO);
+    }
+    EXPECT_FALSE(BoxesOverlapByPoints(Find(cached.scene, "c"), Find(cached.scene, "t")));
+    rejections += cached.rejections.total;
+  }
+  EXPECT_GT(rejections, 0);  // the cube does land in the table, and is rejected
+}
+
 }  // namespace
 }  // namespace prs::sampling
