@@ -31,7 +31,11 @@ namespace internal {
 Interpreter::Interpreter(const CompiledProgram& program, geometry::Rng& rng,
                          const RunOptions& options)
     : program_(program), rng_(rng), options_(options),
-      module_envs_(program.modules.size()), module_ran_(program.modules.size(), false) {}
+      module_envs_(program.modules.size()), module_ran_(program.modules.size(), false) {
+  // Most programs create each creation site's object once: room for that without regrowing.
+  scene_.objects.reserve(program.plans.size());
+  completed_.reserve(program.plans.size());
+}
 
 AttemptResult Interpreter::Run() {
   try {

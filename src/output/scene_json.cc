@@ -108,9 +108,12 @@ void AppendValue(const lang::Value& v, Out& out) {
   AppendString(lang::Repr(v), out);
 }
 
-bool IsCoreProperty(const std::string& name) {
-  return name == "position" || name == "orientation" || name == "width" || name == "length" ||
-         name == "height" || name == "yaw" || name == "pitch" || name == "roll";
+// string_view comparisons check the length first, so most names are rejected without memcmp.
+bool IsCoreProperty(std::string_view name) {
+  using namespace std::literals;
+  return name == "position"sv || name == "orientation"sv || name == "width"sv ||
+         name == "length"sv || name == "height"sv || name == "yaw"sv || name == "pitch"sv ||
+         name == "roll"sv;
 }
 
 void AppendProperties(const lang::SceneObject& o, Out& out) {
