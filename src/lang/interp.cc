@@ -31,7 +31,9 @@ namespace internal {
 Interpreter::Interpreter(const CompiledProgram& program, geometry::Rng& rng,
                          const RunOptions& options)
     : program_(program), rng_(rng), options_(options),
-      module_envs_(program.modules.size()), module_ran_(program.modules.size(), false) {
+      module_envs_(program.modules.size()), module_ran_(program.modules.size(), false),
+      module_shared_(program.modules.size(), false),
+      imports_unshared_(program.modules.size(), false) {
   // Most programs create each creation site's object once: room for that without regrowing.
   scene_.objects.reserve(program.plans.size());
   completed_.reserve(program.plans.size());
@@ -62,6 +64,7 @@ void Interpreter::RunModule(int module_index) {
     auto it = options_.cache->module_globals.find(module_index);
     if (it != options_.cache->module_globals.end()) {
       module_envs_[module_index] = it->second;
+      module_shared_[module_index] = true;
       return;
     }
   }
@@ -71,9 +74,12 @@ void Interpreter::RunModule(int module_index) {
   current_module_ = module_index;
   ExecBody(program_.modules[module_index]->ast.body);
   current_module_ = saved;
+  // A module that imports an unshared one may hold its draws (`from random import *`).
   if (cacheable && draws_ == draws_before && scene_.objects.size() == objects_before &&
-      scene_.params.size() == params_before && IsSameInEveryScene(module_envs_[module_index])) {
+      scene_.params.size() == params_before && !imports_unshared_[module_index] &&
+      IsSameInEveryScene(module_envs_[module_index])) {
     options_.cache->module_globals[module_index] = module_envs_[module_index];
+    module_shared_[module_index] = true;
   }
 }
 
@@ -144,6 +150,7 @@ Flow Interpreter::Exec(const Stmt& stmt) {
   } else if (const auto* node = std::get_if<FromImportStmt>(&stmt.node)) {
     const int target = program_.import_targets.at(node);
     RunModule(target);
+    if (!module_shared_[target]) imports_unshared_[current_module_] = true;
     for (const auto& [name, value] : module_envs_[target]) module_envs_[current_module_][name] = value;
   }
   return Flow::kNormal;

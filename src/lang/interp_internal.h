@@ -172,6 +172,8 @@ class Interpreter {
   std::vector<bool> completed_;      // per object: fully placed (collision checks use these)
   std::vector<Env> module_envs_;
   std::vector<bool> module_ran_;
+  std::vector<bool> module_shared_;     // globals from, or stored in, RunCache::module_globals
+  std::vector<bool> imports_unshared_;  // imported a module whose globals are not shared
   int current_module_ = 0;
   Env* locals_ = nullptr;            // the current function's frame, if any
   // The variable a statement `NAME = Class ...` binds, so the object carries its name

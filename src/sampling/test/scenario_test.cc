@@ -60,6 +60,7 @@ TEST(ScenarioTest, ParamOverrideForAnUndeclaredNameIsAnError) {
 TEST(ScenarioTest, SharedModuleGlobalsStillVaryPerScene) {
   auto program = CompileOrDie("from shared_values import *\n"
                               "from random_module import *\n"
+                              "from reexport import *\n"
                               "param drawn = size + 0\n"
                               "param moved = offset\n"
                               "b = Box at Vector3D(offset, 0, 0.5)\n",
