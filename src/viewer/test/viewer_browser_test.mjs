@@ -1,0 +1,178 @@
+// End-to-end test of `prs view` in headless Chromium (Debian's, driven over the DevTools
+// protocol by puppeteer-core): the served page and the --html file each load offline, show
+// the scene `prs sample` gives (same JSON line, one mesh and one list item per object), draw
+// it, select on click, and step with next/previous. Screenshots go to the artefacts folder.
+// Usage: node viewer_browser_test.mjs PRS NODE_MODULES SOURCE_DIR ARTIFACTS_DIR
+import assert from 'node:assert/strict';
+import { execFileSync, spawn } from 'node:child_process';
+import { mkdirSync, mkdtempSync, rmSync } from 'node:fs';
+import { createRequire } from 'node:module';
+import { tmpdir } from 'node:os';
+import path from 'node:path';
+import { pathToFileURL } from 'node:url';
+
+const [prs, nodeModules, sourceDir, artifacts] = process.argv.slice(2);
+const puppeteer = createRequire(path.resolve(nodeModules, 'index.js'))('puppeteer-core');
+const chromium = process.env.PRS_CHROMIUM || '/usr/bin/chromium';
+const example = path.join(sourceDir, 'examples', 'table_cube.prs');
+const kSeed = '1';
+
+function sampleLines(count) {
+  const out = execFileSync(prs, ['sample', example, '-s', kSeed, '-n', String(count), '-q']);
+  return out.toString().trim().split('\n');
+}
+
+// Starts `prs view` and resolves with the process and the URL it prints.
+function startServer() {
+  const child = spawn(prs, ['view', example, '-s', kSeed], { stdio: ['ignore', 'pipe', 'pipe'] });
+  let stderr = '';
+  child.stderr.on('data', (d) => { stderr += d; });
+  return new Promise((resolve, reject) => {
+    child.stdout.once('data', (d) => resolve({ child, url: d.toString().trim(), stderr: () => stderr }));
+    child.once('exit', (code) => reject(new Error(`prs view exited ${code}: ${stderr}`)));
+  });
+}
+
+async function stopServer(server) {
+  const exited = new Promise((resolve) => server.child.once('exit', (code) => resolve(code)));
+  server.child.kill('SIGTERM');
+  assert.equal(await exited, 0, 'prs view exits 0 on SIGTERM');
+  assert.match(server.stderr(), /viewer stopped/);
+}
+
+async function waitForScene(page, index) {
+  await page.waitForFunction((i) => document.body.dataset.state === 'ready' &&
+                             document.body.dataset.index === i, { timeout: 15000 }, String(index));
+}
+
+// The page's state as the test checks it.
+function readPage(page) {
+  return page.evaluate(() => ({
+    json: document.getElementById('scene-json').textContent,
+    items: document.querySelectorAll('#objects li').length,
+    meshes: window.prsViewer.view.meshes.length,
+    selectedItems: [...document.querySelectorAll('#objects li.selected')].map((li) => li.dataset.index),
+    prevDisabled: document.getElementById('prev').disabled,
+    nextDisabled: document.getElementById('next').disabled,
+    newSeedDisabled: document.getElementById('new-seed').disabled,
+  }));
+}
+
+// The colour drawn at object i's centre, which must not be the background: WebGL really drew.
+function pixelAtObject(page, i) {
+  return page.evaluate((index) => {
+    const view = window.prsViewer.view;
+    view.render();
+    const canvas = view.renderer.domElement;
+    const rect = canvas.getBoundingClientRect();
+    const p = view.screenPoint(index);
+    const copy = document.createElement('canvas');
+    copy.width = canvas.width;
+    copy.height = canvas.height;
+    const context = copy.getContext('2d');
+    context.drawImage(canvas, 0, 0);
+    const scale = canvas.width / rect.width;
+    return [...context.getImageData(Math.round((p.x - rect.left) * scale),
+                                    Math.round((p.y - rect.top) * scale), 1, 1).data].slice(0, 3);
+  }, i);
+}
+
+async function checkScene(page, expectedLine) {
+  const state = await readPage(page);
+  const objects = JSON.parse(expectedLine).objects.length;
+  assert.equal(state.json, expectedLine, 'the page shows the line prs sample writes');
+  assert.equal(state.items, objects, 'one list item per object');
+  assert.equal(state.meshes, objects, 'one mesh per object');
+  return state;
+}
+
+async function checkSelection(page) {
+  const point = await page.evaluate(() => window.prsViewer.view.screenPoint(0));  // the table
+  await page.mouse.click(point.x, point.y);
+  const state = await readPage(page);
+  assert.deepEqual(state.selectedItems, ['0'], 'a click on the table selects it in the list');
+  assert.equal(await page.evaluate(() => window.prsViewer.view.selected), 0);
+}
+
+async function checkServedViewer(browser, lines) {
+  const server = await startServer();
+  try {
+    assert.match(server.url, /^http:\/\/127\.0\.0\.1:\d+\/$/);
+    const page = await openPage(browser, server.url, (url) => url.startsWith(server.url));
+    await waitForScene(page, 0);
+    await checkScene(page, lines[0]);
+    assert.notDeepEqual(await pixelAtObject(page, 0), [233, 237, 242], 'the table is drawn');
+    await checkSelection(page);
+    await page.screenshot({ path: path.join(artifacts, 'viewer.png') });
+    await page.click('#next');
+    await waitForScene(page, 1);
+    const next = await checkScene(page, lines[1]);
+    assert.notEqual(lines[1], lines[0]);
+    assert.equal(next.prevDisabled, false);
+    await page.click('#prev');
+    await waitForScene(page, 0);
+    assert.equal((await checkScene(page, lines[0])).prevDisabled, true);
+    page.checkProblems();
+    await page.close();
+  } finally {
+    if (server.child.exitCode === null) await stopServer(server);
+  }
+}
+
+async function checkStandalonePage(browser, lines, dir) {
+  const file = path.join(dir, 'scenes.html');
+  execFileSync(prs, ['view', example, '-s', kSeed, '--html', file, '-n', String(lines.length)],
+               { stdio: 'ignore' });
+  const page = await openPage(browser, pathToFileURL(file).href, (url) => url.startsWith('file:'));
+  await waitForScene(page, 0);
+  assert.equal((await checkScene(page, lines[0])).newSeedDisabled, true);
+  for (let i = 1; i < lines.length; ++i) {
+    await page.click('#next');
+    await waitForScene(page, i);
+    await checkScene(page, lines[i]);
+  }
+  assert.equal((await readPage(page)).nextDisabled, true, 'the last embedded scene ends the list');
+  await page.screenshot({ path: path.join(artifacts, 'viewer-html.png') });
+  page.checkProblems();
+  await page.close();
+}
+
+// A page that fails the test on a script error or on any request that leaves the allowed origin.
+async function openPage(browser, url, allowed) {
+  const page = await browser.newPage();
+  const problems = [];
+  page.on('pageerror', (error) => problems.push(`script error: ${error.message}`));
+  page.on('request', (request) => {
+    if (!allowed(request.url())) problems.push(`request outside the viewer: ${request.url()}`);
+  });
+  page.checkProblems = () => assert.deepEqual(problems, []);
+  await page.setViewport({ width: 1280, height: 800 });
+  await page.goto(url);
+  return page;
+}
+
+async function main() {
+  mkdirSync(artifacts, { recursive: true });
+  const dir = mkdtempSync(path.join(tmpdir(), 'prs-viewer-'));
+  const browser = await puppeteer.launch({
+    executablePath: chromium,
+    headless: true,
+    args: ['--no-sandbox', '--disable-gpu', '--enable-unsafe-swiftshader',
+           '--disable-background-networking'],
+  });
+  try {
+    const lines = sampleLines(3);
+    await checkServedViewer(browser, lines);
+    console.log('served viewer: ok');
+    await checkStandalonePage(browser, lines, dir);
+    console.log('--html page: ok');
+  } finally {
+    await browser.close();
+    rmSync(dir, { recursive: true, force: true });
+  }
+}
+
+main().catch((error) => {
+  console.error(error);
+  process.exit(1);
+});
