@@ -12,7 +12,12 @@ packages=(
   libcli11-dev           # the prs command line
   nlohmann-json3-dev     # scene JSON output and parsing
   clang libclang-rt-14-dev  # libFuzzer for the front-end fuzz target
+  libcpp-httplib-dev     # prs view's local HTTP server
+  chromium               # prs view's end-to-end test (headless, driven by puppeteer-core)
 )
+# prs view bundles three.js with npm at build time; keep a Node.js that is already installed
+# (e.g. NodeSource's, which ships its own npm) and otherwise take Debian's.
+command -v npm >/dev/null || packages+=(nodejs npm)
 
 missing=()
 for p in "${packages[@]}"; do
