@@ -104,6 +104,8 @@ ViewerServer::ViewerServer(const lang::CompiledProgram& program,
   impl_->AddRoutes();
   // httplib's default also sets SO_REUSEPORT, which lets a second server share a port that is
   // in use; SO_REUSEADDR alone still allows a quick restart on the same --port.
+  // Stopping waits for connections a browser keeps open; 1 s (not 5) keeps Ctrl-C prompt.
+  impl_->http.set_keep_alive_timeout(1);
   impl_->http.set_socket_options([](socket_t socket) {
     const int yes = 1;
     setsockopt(socket, SOL_SOCKET, SO_REUSEADDR, &yes, sizeof(yes));

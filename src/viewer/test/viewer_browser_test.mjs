@@ -1,11 +1,12 @@
 // End-to-end test of `prs view` in headless Chromium (Debian's, driven over the DevTools
 // protocol by puppeteer-core): the served page and the --html file each load offline, show
 // the scene `prs sample` gives (same JSON line, one mesh and one list item per object), draw
-// it, select on click, and step with next/previous. Screenshots go to the artefacts folder.
+// it, select on click, step with next/previous/new seed, and show a scenario's located error.
+// Screenshots go to the artefacts folder.
 // Usage: node viewer_browser_test.mjs PRS NODE_MODULES SOURCE_DIR ARTIFACTS_DIR
 import assert from 'node:assert/strict';
 import { execFileSync, spawn } from 'node:child_process';
-import { mkdirSync, mkdtempSync, rmSync } from 'node:fs';
+import { mkdirSync, mkdtempSync, rmSync, writeFileSync } from 'node:fs';
 import { createRequire } from 'node:module';
 import { tmpdir } from 'node:os';
 import path from 'node:path';
@@ -23,8 +24,8 @@ function sampleLines(count) {
 }
 
 // Starts `prs view` and resolves with the process and the URL it prints.
-function startServer() {
-  const child = spawn(prs, ['view', example, '-s', kSeed], { stdio: ['ignore', 'pipe', 'pipe'] });
+function startServer(args = [example, '-s', kSeed]) {
+  const child = spawn(prs, ['view', ...args], { stdio: ['ignore', 'pipe', 'pipe'] });
   let stderr = '';
   child.stderr.on('data', (d) => { stderr += d; });
   return new Promise((resolve, reject) => {
@@ -94,6 +95,34 @@ async function checkSelection(page) {
   assert.equal(await page.evaluate(() => window.prsViewer.view.selected), 0);
 }
 
+// "new seed" picks another seed and shows its scene 0, as sampled by the server.
+async function checkNewSeed(page) {
+  await page.click('#new-seed');
+  await page.waitForFunction((s) => document.body.dataset.state === 'ready' &&
+                             document.body.dataset.seed !== s, { timeout: 15000 }, kSeed);
+  const seed = await page.evaluate(() => document.body.dataset.seed);
+  assert.equal(await page.evaluate(() => document.body.dataset.index), '0');
+  const line = execFileSync(prs, ['sample', example, '-s', seed, '-n', '1', '-q']).toString().trim();
+  await checkScene(page, line);
+}
+
+// A scenario with no valid scene: the page shows the located message instead of a scene.
+async function checkErrorShown(browser, dir) {
+  const never = path.join(dir, 'never.prs');
+  writeFileSync(never, 'x = Range(0, 1)\nrequire x > 2\n');
+  const server = await startServer([never, '--max-attempts', '20']);
+  try {
+    const page = await openPage(browser, server.url, (url) => url.startsWith(server.url));
+    await page.waitForFunction(() => document.body.dataset.state === 'error', { timeout: 15000 });
+    const text = await page.evaluate(() => document.getElementById('error-text').textContent);
+    assert.match(text, /never\.prs:2:1: error: no valid scene after 20 attempts/);
+    page.checkProblems();
+    await page.close();
+  } finally {
+    if (server.child.exitCode === null) await stopServer(server);
+  }
+}
+
 async function checkServedViewer(browser, lines) {
   const server = await startServer();
   try {
@@ -112,6 +141,7 @@ async function checkServedViewer(browser, lines) {
     await page.click('#prev');
     await waitForScene(page, 0);
     assert.equal((await checkScene(page, lines[0])).prevDisabled, true);
+    await checkNewSeed(page);
     page.checkProblems();
     await page.close();
   } finally {
@@ -166,6 +196,8 @@ async function main() {
     console.log('served viewer: ok');
     await checkStandalonePage(browser, lines, dir);
     console.log('--html page: ok');
+    await checkErrorShown(browser, dir);
+    console.log('error page: ok');
   } finally {
     await browser.close();
     rmSync(dir, { recursive: true, force: true });
