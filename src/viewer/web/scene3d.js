@@ -92,7 +92,10 @@ export class SceneView {
     this.sun.castShadow = true;
     this.sun.shadow.mapSize.set(2048, 2048);
     this.sun.shadow.bias = -0.0005;
-    this.scene.add(this.sun, this.sun.target);
+    // A weak light from the viewer's side keeps faces turned away from the sun readable.
+    const fill = new THREE.DirectionalLight(0xffffff, 0.6);
+    fill.position.set(-1, -2, 1);
+    this.scene.add(this.sun, this.sun.target, fill);
   }
 
   resize() {
