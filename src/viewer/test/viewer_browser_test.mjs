@@ -167,6 +167,31 @@ async function checkStandalonePage(browser, lines, dir) {
   await page.close();
 }
 
+// Colours and shapes as the `color` and `shape_type` properties say (sRGB hex per object).
+async function checkColorsAndShapes(browser, dir) {
+  const scenario = path.join(dir, 'colors.prs');
+  writeFileSync(scenario, ['class Thing:', '    width: 0.2', '    length: 0.2', '    height: 0.2',
+    'Thing at Vector3D(0, 0, 0.1), with color [1, 0.5, 0]',
+    'Thing at Vector3D(0.5, 0, 0.1), with color [0, 128, 255], with shape_type "cylinder"',
+    'Thing at Vector3D(1, 0, 0.1), with color 0.25',
+    'Thing at Vector3D(1.5, 0, 0.1), with color "0.5"',
+    'Thing at Vector3D(2, 0, 0.1), with color "teal"',
+    'Thing at Vector3D(2.5, 0, 0.1), with color "255 0 0"',
+    'Thing at Vector3D(3, 0, 0.1), with color "not-a-colour"', ''].join('\n'));
+  const file = path.join(dir, 'colors.html');
+  execFileSync(prs, ['view', scenario, '--html', file], { stdio: 'ignore' });
+  const page = await openPage(browser, pathToFileURL(file).href, (url) => url.startsWith('file:'));
+  await waitForScene(page, 0);
+  const drawn = await page.evaluate(() => window.prsViewer.view.meshes.map(
+      (m) => [m.material.color.getHexString(), m.geometry.type]));
+  assert.deepEqual(drawn.map(([hex]) => hex),
+                   ['ff8000', '0080ff', '404040', '808080', '008080', 'ff0000', '9aa6b8']);
+  assert.deepEqual(drawn.map(([, type]) => type === 'CylinderGeometry'),
+                   [false, true, false, false, false, false, false]);
+  page.checkProblems();
+  await page.close();
+}
+
 // A page that fails the test on a script error or on any request that leaves the allowed origin.
 async function openPage(browser, url, allowed) {
   const page = await browser.newPage();
@@ -198,6 +223,8 @@ async function main() {
     console.log('--html page: ok');
     await checkErrorShown(browser, dir);
     console.log('error page: ok');
+    await checkColorsAndShapes(browser, dir);
+    console.log('colours and shapes: ok');
   } finally {
     await browser.close();
     rmSync(dir, { recursive: true, force: true });

@@ -1,6 +1,6 @@
 // Object colours from a scene's `color` property, read the way the renderer reads them:
-// CSS colour names ("blue"), grey levels as numbers or numeric strings ("0.5"), and RGB
-// triples in 0..1 (or 0..255 when any component is above 1).
+// CSS colour names ("blue"), "#rrggbb", grey levels as numbers or numeric strings ("0.5"), and
+// RGB(A) triples as lists or text ("0.1 0.2 0.3"), in 0..1 (or 0..255 when a component is above 1).
 import { Color, SRGBColorSpace } from 'three';
 
 export const kDefaultColor = '#9aa6b8';
@@ -19,6 +19,10 @@ function fromTriple(rgb) {
 function fromText(text) {
   const trimmed = text.trim();
   if (trimmed !== '' && !Number.isNaN(Number(trimmed))) return greyLevel(Number(trimmed));
+  const numbers = trimmed.split(/[\s,]+/).map(Number);  // "0.1 0.2 0.3", "255,128,0"
+  if ((numbers.length === 3 || numbers.length === 4) && numbers.every(Number.isFinite)) {
+    return fromTriple(numbers.slice(0, 3));
+  }
   const color = new Color();
   const name = trimmed.toLowerCase();
   // setColorName knows the CSS names; setStyle also takes #hex and rgb(...).
