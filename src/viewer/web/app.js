@@ -70,7 +70,7 @@ class Viewer {
     this.readHash();
     this.request = 0;
     this.scene = null;
-    this.view = new SceneView($('view'), (i) => this.select(i));
+    this.view = new SceneView($('view'), (i) => this.select(i), (i, e) => this.showTip(i, e));
     this.bindControls();
   }
 
@@ -163,6 +163,18 @@ class Viewer {
     $('error-text').textContent = error.message;
     $('status').textContent = `scene ${this.index} of seed ${this.seed}: no scene`;
     document.body.dataset.state = 'error';
+  }
+
+  // The name of the object under the pointer, beside it.
+  showTip(i, event) {
+    const tip = $('tip');
+    const object = this.scene && i >= 0 ? this.scene.objects[i] : null;
+    tip.hidden = !object;
+    if (!object) return;
+    const box = $('view').getBoundingClientRect();
+    tip.textContent = `${objectLabel(object, i)} · ${object.class}`;
+    tip.style.left = `${event.clientX - box.left + 14}px`;
+    tip.style.top = `${event.clientY - box.top + 10}px`;
   }
 
   /// Selects object `i` (-1: none) in the list and in 3D; a second click deselects.

@@ -22,6 +22,25 @@ function makeObjectGeometry(object) {
   return new THREE.BoxGeometry(w, l, h);
 }
 
+// Cameras (by class or model name) get a translucent view cone along their forward (+y) axis,
+// so that where they look is visible; it is a hint, not part of the object (picking looks at
+// the meshes alone, not their children).
+function isCamera(object) {
+  const model = object.properties && object.properties.model_name;
+  return /camera/i.test(object.class) || (typeof model === 'string' && /camera/i.test(model));
+}
+
+function makeViewCone(object) {
+  const size = Math.max(...object.dimensions, 0.05);
+  const cone = new THREE.Mesh(new THREE.ConeGeometry(size * 1.2, size * 3, 4, 1, true),
+                              new THREE.MeshBasicMaterial({ color: 0x4a6fa5, transparent: true, opacity: 0.25,
+                                                            side: THREE.DoubleSide, depthWrite: false }));
+  // ConeGeometry points along +y with its tip at +height/2: turn the tip back to the camera.
+  cone.rotateZ(Math.PI);
+  cone.position.y = size * 1.5 + object.dimensions[1] / 2;
+  return cone;
+}
+
 function makeObjectMesh(object, index) {
   const material = new THREE.MeshStandardMaterial({
     color: objectColor(object), roughness: 0.65, metalness: 0.05 });
@@ -37,6 +56,7 @@ function makeObjectMesh(object, index) {
                                        new THREE.LineBasicMaterial({ color: 0x000000, transparent: true, opacity: 0.25 }));
   mesh.add(edges);
   mesh.userData.edges = edges;
+  if (isCamera(object)) mesh.add(makeViewCone(object));
   return mesh;
 }
 
@@ -60,9 +80,11 @@ function disposeTree(root) {
 }
 
 export class SceneView {
-  constructor(container, onPick) {
+  /// `onPick(i)` on a click (-1: empty space); `onHover(i, event)` as the pointer moves.
+  constructor(container, onPick, onHover) {
     this.container = container;
     this.onPick = onPick;
+    this.onHover = onHover;
     this.renderer = new THREE.WebGLRenderer({ antialias: true, preserveDrawingBuffer: true });
     this.renderer.setPixelRatio(window.devicePixelRatio || 1);
     this.renderer.shadowMap.enabled = true;
@@ -186,7 +208,7 @@ export class SceneView {
     this.meshes.forEach((mesh, i) => {
       const on = i === index;
       mesh.material.emissive.set(on ? kSelectColor : 0x000000);
-      mesh.material.emissiveIntensity = on ? 0.45 : 0;
+      mesh.material.emissiveIntensity = on ? 0.35 : 0;
       const edges = mesh.userData.edges.material;
       edges.color.set(on ? kSelectColor : 0x000000);
       edges.opacity = on ? 1 : 0.25;
@@ -218,6 +240,10 @@ export class SceneView {
     const canvas = this.renderer.domElement;
     let down = null;
     canvas.addEventListener('pointerdown', (e) => { down = { x: e.clientX, y: e.clientY }; });
+    canvas.addEventListener('pointermove', (e) => {
+      if (!down) this.onHover(this.pick(e.clientX, e.clientY), e);
+    });
+    canvas.addEventListener('pointerleave', (e) => this.onHover(-1, e));
     canvas.addEventListener('pointerup', (e) => {
       if (down && Math.hypot(e.clientX - down.x, e.clientY - down.y) <= kClickSlop) {
         this.onPick(this.pick(e.clientX, e.clientY));
