@@ -213,7 +213,8 @@ async function main() {
     executablePath: chromium,
     headless: true,
     args: ['--no-sandbox', '--disable-gpu', '--enable-unsafe-swiftshader',
-           '--disable-background-networking'],
+           '--disable-background-networking',
+           '--disable-dev-shm-usage'],  // containers often have a small /dev/shm
   });
   try {
     const lines = sampleLines(3);
