@@ -12,6 +12,7 @@ packages=(
   libcli11-dev           # the prs command line
   nlohmann-json3-dev     # scene JSON output and parsing
   clang libclang-rt-14-dev  # libFuzzer for the front-end fuzz target
+  libmujoco-dev          # physics for the simulated case study (src/sim)
   libcpp-httplib-dev     # prs view's local HTTP server
   chromium               # prs view's end-to-end test (headless, driven by puppeteer-core)
 )
