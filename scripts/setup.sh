@@ -13,7 +13,12 @@ packages=(
   nlohmann-json3-dev     # scene JSON output and parsing
   clang libclang-rt-14-dev  # libFuzzer for the front-end fuzz target
   libmujoco-dev          # physics for the simulated case study (src/sim)
+  libcpp-httplib-dev     # prs view's local HTTP server
+  chromium               # prs view's end-to-end test (headless, driven by puppeteer-core)
 )
+# prs view bundles three.js with npm at build time; keep a Node.js that is already installed
+# (e.g. NodeSource's, which ships its own npm) and otherwise take Debian's.
+command -v npm >/dev/null || packages+=(nodejs npm)
 
 missing=()
 for p in "${packages[@]}"; do
