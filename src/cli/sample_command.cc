@@ -192,14 +192,21 @@ int RunSample(const SampleArgs& args) {
 CommandRunner ConfigureSampleCommand(CLI::App& command) {
   auto args = std::make_shared<SampleArgs>();
   AddScenarioOptions(command, args->scenario);
-  command.add_option("-n,--count", args->count, "number of scenes")
-      ->type_name("N")
-      ->check(IntegerAtLeast(0))
-      ->capture_default_str();
-  command.add_option("--start", args->start, "index of the first scene")
+  CLI::Option* count = command.add_option("-n,--count", args->count, "number of scenes")
+                           ->type_name("N")
+                           ->check(IntegerAtLeast(0))
+                           ->capture_default_str();
+  CLI::Option* start = command.add_option("--start", args->start, "index of the first scene")
+                           ->type_name("I")
+                           ->check(UnsignedIntegerText())
+                           ->capture_default_str();
+  // --index I: the one scene a `prs test` record names, short for `-n 1 --start I`.
+  command.add_option("--index", args->start, "only scene I (same as -n 1 --start I)")
       ->type_name("I")
       ->check(UnsignedIntegerText())
-      ->capture_default_str();
+      ->excludes(count)
+      ->excludes(start)
+      ->each([args](const std::string&) { args->count = 1; });
   command
       .add_option("-o,--output", args->output,
                   "write to OUT (via OUT.partial, renamed when complete) instead of stdout")

@@ -1,0 +1,229 @@
+// `prs test`: runs a robot controller (a built-in one, or the user's own program with --exec)
+// in sampled scenes, prints the outcome table (the paper's Table III) on stdout, one JSON
+// record per episode to -o, and saves the failing scenes with --save-failures (docs/harness.md).
+#include <fmt/format.h>
+
+#include <filesystem>
+#include <iostream>
+#include <limits>
+#include <memory>
+#include <optional>
+
+#include "cli/commands.h"
+#include "cli/common.h"
+#include "cli/interrupt.h"
+#include "cli/progress.h"
+#include "cli/text_table.h"
+#include "harness/exec_controller.h"
+#include "harness/harness.h"
+#include "harness/registry.h"
+#include "output/line_writer.h"
+
+namespace prs::cli {
+namespace {
+
+struct TestArgs {
+  ScenarioArgs scenario;
+  SamplingArgs sampling;
+  std::string controller;
+  std::string exec;
+  int64_t count = 100;
+  uint64_t start = 0;
+  std::string output;  // empty: no records written
+  double timeout_s = 60;
+  std::string save_failures_dir;
+  bool quiet = false;
+};
+
+std::string ListControllerNames() {
+  std::string names;
+  for (const harness::ControllerInfo& info : harness::ListControllers()) {
+    names += (names.empty() ? "" : ", ") + info.name;
+  }
+  return names;
+}
+
+// The factory for --controller NAME or --exec CMD; nullopt after printing a usage error.
+std::optional<harness::ControllerFactory> ChooseController(const TestArgs& args,
+                                                           const std::atomic<bool>& cancel) {
+  if (args.controller.empty() && args.exec.empty()) {
+    PrintError("no controller: give --controller NAME (built in: " + ListControllerNames() +
+               ") or --exec CMD");
+    return std::nullopt;
+  }
+  if (!args.exec.empty()) {
+    const harness::ExecOptions options{args.exec, args.timeout_s, &cancel};
+    return [options] { return std::make_unique<harness::ExecController>(options); };
+  }
+  if (const harness::ControllerInfo* info = harness::FindController(args.controller)) {
+    return info->factory;
+  }
+  std::vector<std::string> names;
+  for (const harness::ControllerInfo& info : harness::ListControllers()) names.push_back(info.name);
+  const std::string suggestion = lang::SuggestClosest(args.controller, names);
+  PrintError("--controller: unknown controller '" + args.controller + "'" +
+             (suggestion.empty() ? "" : "; did you mean '" + suggestion + "'?") +
+             " (controllers: " + ListControllerNames() + ")");
+  return std::nullopt;
+}
+
+// What `prs sample` needs to rewrite one of these scenes.
+std::vector<std::string> MakeScenarioArgs(const TestArgs& args) {
+  std::vector<std::string> words = {args.scenario.file};
+  for (const std::string& dir : args.scenario.include_dirs) words.insert(words.end(), {"-I", dir});
+  for (const std::string& param : args.scenario.params) words.insert(words.end(), {"-p", param});
+  if (args.sampling.naive) words.push_back("--naive");
+  return words;
+}
+
+harness::RunOptions MakeRunOptions(const TestArgs& args, const std::atomic<bool>& cancel) {
+  harness::RunOptions options;
+  options.sample = MakeSampleOptions(args.sampling);
+  options.seed = args.sampling.seed;
+  options.start = args.start;
+  options.count = args.count;
+  options.threads = args.sampling.threads;
+  options.scenario_args = MakeScenarioArgs(args);
+  options.save_failures_dir = args.save_failures_dir;
+  // A picture per failure (FailureHook) is left for `prs render`'s library to fill in.
+  options.cancel = &cancel;
+  return options;
+}
+
+// outcome / count / share, with a total row.
+std::string FormatOutcomeTable(const std::vector<harness::EpisodeRecord>& records) {
+  TextTable table({"outcome", "count", "share"}, "lrr");
+  for (const harness::OutcomeRow& row : harness::TabulateOutcomes(records)) {
+    table.AddRow({row.outcome, std::to_string(row.count), fmt::format("{:.1f}%", 100 * row.share)});
+  }
+  table.AddRow({"total", std::to_string(records.size()), records.empty() ? "" : "100.0%"});
+  return table.Format(0);
+}
+
+// "10 episodes, 7 successes, 3 failures; 0.05 s, 12000 episodes/min on 2 threads"
+std::string FormatTestSummary(const harness::RunSummary& summary, double seconds) {
+  int64_t successes = 0;
+  for (const harness::EpisodeRecord& record : summary.records) {
+    successes += record.result.outcome == "success";
+  }
+  const int64_t episodes = int64_t(summary.records.size());
+  const double per_minute = seconds > 0 ? 60 * double(episodes) / seconds : 0.0;
+  return fmt::format("{}, {}, {}; {:.2f} s, {:.0f} episodes/min on {}",
+                     FormatCount(episodes, "episode"), FormatCount(successes, "success"),
+                     FormatCount(episodes - successes, "failure"), seconds, per_minute,
+                     FormatCount(summary.threads, "thread"));
+}
+
+// Runs the episodes, writing each record as it arrives; returns the exit code.
+int RunAndReport(const lang::CompiledProgram& program, const harness::ControllerFactory& factory,
+                 const TestArgs& args, output::LineWriter* records, InterruptWatch& interrupt) {
+  harness::RunOptions options = MakeRunOptions(args, interrupt.flag());
+  ProgressBar progress(args.count, !args.quiet && IsStderrTerminal());
+  int64_t done = 0;
+  options.on_record = [&](const harness::EpisodeRecord& record) {
+    if (records) records->AddLine(harness::FormatRecordJson(record));
+    progress.Update(++done);
+  };
+  const auto begin = std::chrono::steady_clock::now();
+  try {
+    const harness::RunSummary summary = harness::RunEpisodes(program, factory, options);
+    if (records) records->Commit();
+    progress.Erase();
+    const double seconds =
+        std::chrono::duration<double>(std::chrono::steady_clock::now() - begin).count();
+    std::cout << FormatOutcomeTable(summary.records) << std::flush;
+    if (!args.quiet) PrintNote(FormatTestSummary(summary, seconds));
+    return kExitSuccess;
+  } catch (const lang::ScenarioError& error) {
+    progress.Erase();
+    return ReportScenarioError(error, program.sources);
+  } catch (const sampling::BatchCancelled&) {
+    progress.Erase();
+    PrintNote(fmt::format("interrupted after {} (resume with --start {} -n {})",
+                          FormatCount(done, "episode"), args.start + uint64_t(done),
+                          args.count - done));
+    return kExitInterruptedBase + interrupt.signal_number();
+  } catch (const std::exception& error) {  // records or failing scenes cannot be written
+    progress.Erase();
+    PrintError(error.what());
+    return kExitScenarioError;
+  }
+}
+
+// Checks that need no scenario, then compiles it, opens the outputs and runs.
+int RunTest(const TestArgs& args) {
+  if (args.count > 0 &&
+      args.start > std::numeric_limits<uint64_t>::max() - uint64_t(args.count - 1)) {
+    PrintError(fmt::format("--start {} with -n {} runs past the last scene index, 2^64 - 1",
+                           args.start, args.count));
+    return kExitUsage;
+  }
+  InterruptWatch interrupt;
+  const auto factory = ChooseController(args, interrupt.flag());
+  if (!factory) return kExitUsage;
+  auto program = CompileScenario(args.scenario);
+  if (!program) return kExitScenarioError;
+  std::unique_ptr<output::LineWriter> records;
+  try {
+    if (!args.output.empty()) records = std::make_unique<output::LineWriter>(args.output);
+    if (!args.save_failures_dir.empty()) std::filesystem::create_directories(args.save_failures_dir);
+  } catch (const std::exception& error) {
+    PrintError(error.what());
+    return kExitScenarioError;
+  }
+  return RunAndReport(*program, *factory, args, records.get(), interrupt);
+}
+
+CLI::Validator PositiveSeconds() {
+  return CLI::Validator(
+      [](std::string& text) -> std::string {
+        size_t used = 0;
+        double value = 0;
+        try {
+          value = std::stod(text, &used);
+        } catch (const std::exception&) {
+          used = 0;
+        }
+        if (used == text.size() && value > 0 && value < 1e6) return "";
+        return "expects a number of seconds above 0 (and below 10^6), got '" + text + "'";
+      },
+      "");
+}
+
+}  // namespace
+
+CommandRunner ConfigureTestCommand(CLI::App& command) {
+  auto args = std::make_shared<TestArgs>();
+  AddScenarioOptions(command, args->scenario);
+  CLI::Option* controller =
+      command.add_option("--controller", args->controller, "a built-in controller (demo-reach)")
+          ->type_name("NAME");
+  command
+      .add_option("--exec", args->exec,
+                  "your own controller: a shell command run once per scene (docs/harness.md)")
+      ->type_name("CMD")
+      ->excludes(controller);
+  command.add_option("-n,--count", args->count, "number of episodes")
+      ->type_name("N")
+      ->check(IntegerAtLeast(0))
+      ->capture_default_str();
+  command.add_option("--start", args->start, "index of the first scene")
+      ->type_name("I")
+      ->check(UnsignedIntegerText())
+      ->capture_default_str();
+  command.add_option("-o,--output", args->output, "write one JSON record per episode to OUT")
+      ->type_name("OUT");
+  command.add_option("--timeout", args->timeout_s, "seconds an --exec episode may take")
+      ->type_name("S")
+      ->check(PositiveSeconds())
+      ->capture_default_str();
+  command
+      .add_option("--save-failures", args->save_failures_dir,
+                  "write each failing scene to DIR/seed-S-index-I.json")
+      ->type_name("DIR");
+  AddSamplingOptions(command, args->sampling);
+  command.add_flag("-q,--quiet", args->quiet, "no summary on stderr");
+  return [args] { return RunTest(*args); };
+}
+
+}  // namespace prs::cli

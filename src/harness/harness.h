@@ -1,0 +1,118 @@
+// The test harness of the case study (paper §"Case Study", Table III): sample scenes, run a
+// robot controller in each, and tabulate the outcomes. Independent of any simulator: a
+// controller is anything that turns a sampled scene into an outcome (docs/harness.md).
+#pragma once
+
+#include <atomic>
+#include <cstdint>
+#include <functional>
+#include <memory>
+#include <nlohmann/json.hpp>
+#include <string>
+#include <vector>
+
+#include "sampling/batch.h"
+#include "sampling/sampler.h"
+
+namespace prs::harness {
+
+/// What one episode ended in.
+struct EpisodeResult {
+  /// "success", "perception-fault", "no-path", "poor-grip", or any other lowercase-hyphenated
+  /// name (IsOutcomeName).
+  std::string outcome;
+  std::string detail;  // one sentence for a person
+  nlohmann::json extra = nlohmann::json::object();  // anything else the controller reports
+};
+
+/// A robot controller under test. RunEpisodes gives each worker thread its own controller, so
+/// an implementation need not be thread-safe; it must not keep state that changes the outcome
+/// of later episodes if the results are to be the same for any thread count.
+class Controller {
+ public:
+  virtual ~Controller() = default;
+  /// Runs one episode in `scene`, whose spec §8 JSON line is `scene_json`. Exceptions are
+  /// recorded as the outcome "controller-error" with their message as the detail.
+  virtual EpisodeResult RunEpisode(const sampling::SampledScene& scene,
+                                   const std::string& scene_json) = 0;
+};
+
+/// Makes one controller (one per worker thread).
+using ControllerFactory = std::function<std::unique_ptr<Controller>()>;
+
+/// True for a non-empty name of lowercase letters, digits and single inner hyphens
+/// ("no-path", "exit-3"), at most 64 characters.
+bool IsOutcomeName(const std::string& name);
+
+/// One episode as the harness records it.
+struct EpisodeRecord {
+  uint64_t seed = 0;
+  uint64_t index = 0;
+  EpisodeResult result;
+  double wall_s = 0;        // wall-clock time of the episode alone (not the sampling)
+  std::string saved_scene;  // the failure's scene file under --save-failures, else empty
+  std::string regenerate;   // failures only: the `prs sample` command that rewrites the scene
+};
+
+/// Called for each failing episode on the worker thread that ran it, after the scene was
+/// saved as `path_stem` + ".json": e.g. to render `path_stem` + ".png". It must be
+/// thread-safe. Exceptions stop the run and propagate from RunEpisodes.
+using FailureHook =
+    std::function<void(const sampling::SampledScene& scene, const std::string& path_stem)>;
+
+struct RunOptions {
+  sampling::SampleOptions sample;
+  uint64_t seed = 0;
+  uint64_t start = 0;  // index of the first scene
+  int64_t count = 0;
+  int threads = 1;
+  /// The arguments that select the scenes of `prs sample` (FILE, -I, -p, --naive), for the
+  /// regenerate command of failure records; none, no command.
+  std::vector<std::string> scenario_args;
+  /// When non-empty, each failure's scene is written to DIR/seed-S-index-I.json (DIR exists).
+  std::string save_failures_dir;
+  FailureHook on_failure;  // optional; only with save_failures_dir
+  /// Called on the calling thread with each record, in index order (optional).
+  std::function<void(const EpisodeRecord&)> on_record;
+  /// Polled between episodes; once true the run stops with sampling::BatchCancelled.
+  const std::atomic<bool>* cancel = nullptr;
+};
+
+struct RunSummary {
+  std::vector<EpisodeRecord> records;  // in index order
+  sampling::BatchSummary sampling;
+  int threads = 1;  // the worker threads used
+};
+
+/// Runs the controller in scenes start..start+count-1 of `seed` on `threads` worker threads
+/// (scenes sampled with sampling::SampleBatch) and returns the records in index order.
+/// Throws what SampleBatch throws (lang::ScenarioError for a scenario that fails,
+/// BatchCancelled, std::invalid_argument for bad counts), and std::runtime_error naming the
+/// file when a failure's scene cannot be saved.
+RunSummary RunEpisodes(const lang::CompiledProgram& program, const ControllerFactory& factory,
+                       const RunOptions& options);
+
+/// One row of the outcome table.
+struct OutcomeRow {
+  std::string outcome;
+  int64_t count = 0;
+  double share = 0;  // count / episodes, in [0, 1]
+};
+
+/// The paper's Table III: one row per outcome, "success" first, then by count (largest
+/// first), ties by name.
+std::vector<OutcomeRow> TabulateOutcomes(const std::vector<EpisodeRecord>& records);
+
+/// One JSON Lines record: seed, index, outcome, detail, wall_s, extra, and for failures
+/// regenerate (and saved_scene when saved). No trailing newline.
+std::string FormatRecordJson(const EpisodeRecord& record);
+
+/// `prs sample ARGS... -s S --start I -n 1`, each argument quoted for a POSIX shell when it
+/// needs to be.
+std::string FormatRegenerateCommand(const std::vector<std::string>& scenario_args, uint64_t seed,
+                                    uint64_t index);
+
+/// `word` as one POSIX shell word: unchanged when it is plain, else in single quotes.
+std::string QuoteForShell(const std::string& word);
+
+}  // namespace prs::harness

@@ -1,0 +1,156 @@
+// The --exec protocol: the scene on stdin and in PRS_SCENE_FILE (removed afterwards), PRS_SEED
+// and PRS_INDEX, a JSON answer or the exit status as the outcome, timeouts and signals, and
+// no process left behind.
+#include "harness/exec_controller.h"
+
+#include <gtest/gtest.h>
+#include <signal.h>
+#include <unistd.h>
+
+#include <chrono>
+#include <filesystem>
+#include <fstream>
+#include <sstream>
+
+namespace prs::harness {
+namespace {
+
+namespace fs = std::filesystem;
+
+class ExecControllerTest : public testing::Test {
+ protected:
+  void SetUp() override {
+    const auto* info = testing::UnitTest::GetInstance()->current_test_info();
+    dir_ = fs::temp_directory_path() /
+           ("prs_exec_test_" + std::string(info->name()) + "_" + std::to_string(::getpid()));
+    fs::remove_all(dir_);
+    fs::create_directories(dir_);
+    scene_.seed = 42;
+    scene_.index = 7;
+  }
+  void TearDown() override { fs::remove_all(dir_); }
+
+  EpisodeResult Run(const std::string& command, double timeout_s = 10) {
+    ExecController controller({command, timeout_s, nullptr});
+    return controller.RunEpisode(scene_, kSceneJson);
+  }
+
+  std::string Read(const std::string& name) const {
+    std::ifstream in(dir_ / name);
+    std::stringstream text;
+    text << in.rdbuf();
+    return text.str();
+  }
+
+  // The command's `$D`: this test's directory, quoted for the shell.
+  std::string D() const { return "'" + dir_.string() + "'"; }
+
+  static constexpr char kSceneJson[] = R"({"format":"prs-scene/1","seed":42,"index":7})";
+  fs::path dir_;
+  sampling::SampledScene scene_;
+};
+
+// A process that no longer exists, or a zombie waiting for its (new) parent to reap it.
+bool IsGone(pid_t pid) {
+  std::ifstream stat("/proc/" + std::to_string(pid) + "/stat");
+  std::string pid_text, name, state;
+  if (!(stat >> pid_text >> name >> state)) return true;
+  return state == "Z" || state == "X";
+}
+
+TEST_F(ExecControllerTest, SceneArrivesOnStdinAndInTheNamedFileWithSeedAndIndex) {
+  const EpisodeResult result =
+      Run("cat > " + D() + "/stdin.txt; cat \"$PRS_SCENE_FILE\" > " + D() + "/file.txt; echo " +
+          "\"$PRS_SEED $PRS_INDEX\" > " + D() + "/ids.txt; echo \"$PRS_SCENE_FILE\" > " + D() +
+          "/path.txt");
+  EXPECT_EQ(result.outcome, "success") << result.detail;
+  EXPECT_EQ(Read("stdin.txt"), std::string(kSceneJson) + "\n");
+  EXPECT_EQ(Read("file.txt"), std::string(kSceneJson) + "\n");
+  EXPECT_EQ(Read("ids.txt"), "42 7\n");
+  std::string path = Read("path.txt");
+  ASSERT_FALSE(path.empty());
+  path.pop_back();
+  EXPECT_FALSE(fs::exists(path)) << "the scene file was not removed: " << path;
+}
+
+TEST_F(ExecControllerTest, ExitCodesBecomeOutcomes) {
+  EXPECT_EQ(Run("exit 0").outcome, "success");
+  const EpisodeResult failed = Run("echo 'gripper jammed' >&2; exit 3");
+  EXPECT_EQ(failed.outcome, "exit-3");
+  EXPECT_NE(failed.detail.find("code 3"), std::string::npos) << failed.detail;
+  EXPECT_NE(failed.detail.find("gripper jammed"), std::string::npos) << failed.detail;
+  EXPECT_EQ(Run("no-such-command-prs-test").outcome, "exit-127");
+}
+
+TEST_F(ExecControllerTest, JsonAnswerOnTheLastLineWinsAndKeepsTheOtherKeys) {
+  const EpisodeResult result = Run(
+      "echo 'log line'; echo '{\"outcome\": \"poor-grip\", \"detail\": \"slipped\", "
+      "\"force_N\": 2.5}'; echo; exit 4");
+  EXPECT_EQ(result.outcome, "poor-grip");
+  EXPECT_EQ(result.detail, "slipped");
+  EXPECT_EQ(result.extra, nlohmann::json({{"force_N", 2.5}}));
+}
+
+TEST_F(ExecControllerTest, JsonWithoutAValidOutcomeIsABadAnswer) {
+  EXPECT_EQ(Run("echo '{\"outcome\": \"No Path!\"}'").outcome, "bad-answer");
+  EXPECT_EQ(Run("echo '{\"result\": \"success\"}'").outcome, "bad-answer");
+  // Not a JSON object at all: the exit status decides.
+  EXPECT_EQ(Run("echo '[1, 2]'; exit 5").outcome, "exit-5");
+  EXPECT_EQ(Run("echo '{not json'").outcome, "success");
+}
+
+TEST_F(ExecControllerTest, KilledBySignalIsNamed) {
+  const EpisodeResult result = Run("kill -KILL $$");
+  EXPECT_EQ(result.outcome, "signal-9");
+  EXPECT_NE(result.detail.find("SIGKILL"), std::string::npos) << result.detail;
+  EXPECT_EQ(Run("kill -TERM $$").outcome, "signal-15");
+}
+
+TEST_F(ExecControllerTest, HangingControllerTimesOutAndItsChildrenDie) {
+  const auto begin = std::chrono::steady_clock::now();
+  const EpisodeResult result =
+      Run("sleep 30 & echo $! > " + D() + "/child.txt; sleep 30", /*timeout_s=*/0.3);
+  const double seconds =
+      std::chrono::duration<double>(std::chrono::steady_clock::now() - begin).count();
+  EXPECT_EQ(result.outcome, "timeout");
+  EXPECT_NE(result.detail.find("0.3 s"), std::string::npos) << result.detail;
+  EXPECT_LT(seconds, 3.0);
+  const pid_t child = std::stoi(Read("child.txt"));
+  EXPECT_TRUE(IsGone(child)) << "the background child " << child << " survived";
+}
+
+TEST_F(ExecControllerTest, BackgroundChildrenDoNotHoldTheEpisodeOpen) {
+  // The stray `sleep` keeps stdout open; the episode must still end with its parent.
+  const auto begin = std::chrono::steady_clock::now();
+  const EpisodeResult result = Run("sleep 30 & echo $! > " + D() + "/child.txt; exit 0");
+  const double seconds =
+      std::chrono::duration<double>(std::chrono::steady_clock::now() - begin).count();
+  EXPECT_EQ(result.outcome, "success");
+  EXPECT_LT(seconds, 3.0);
+  EXPECT_TRUE(IsGone(std::stoi(Read("child.txt"))));
+}
+
+TEST_F(ExecControllerTest, CancellationKillsTheRunningEpisode) {
+  std::atomic<bool> cancel{true};
+  ExecController controller({"sleep 30", 60, &cancel});
+  EXPECT_EQ(controller.RunEpisode(scene_, kSceneJson).outcome, "cancelled");
+}
+
+TEST(InterpretAnswerTest, LastNonEmptyLineIsTheAnswer) {
+  ExecAnswer answer;
+  answer.code = 1;
+  answer.stdout_tail = "{\"outcome\": \"no-path\"}\r\n\n  \n";
+  const EpisodeResult result = InterpretAnswer(answer, 60);
+  EXPECT_EQ(result.outcome, "no-path");
+  EXPECT_EQ(result.detail, "the controller reported no-path");
+  answer.end = ExecAnswer::End::kTimedOut;
+  EXPECT_EQ(InterpretAnswer(answer, 60).outcome, "timeout");
+}
+
+TEST(ExecControllerOptionsTest, RejectsEmptyCommandAndNonPositiveTimeout) {
+  EXPECT_THROW(ExecController({"", 1, nullptr}), std::invalid_argument);
+  EXPECT_THROW(ExecController({"true", 0, nullptr}), std::invalid_argument);
+}
+
+}  // namespace
+}  // namespace prs::harness
