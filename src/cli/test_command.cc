@@ -3,6 +3,7 @@
 // record per episode to -o, and saves the failing scenes with --save-failures (docs/harness.md).
 #include <fmt/format.h>
 
+#include <algorithm>
 #include <filesystem>
 #include <iostream>
 #include <limits>
@@ -114,6 +115,12 @@ std::string FormatTestSummary(const harness::RunSummary& summary, double seconds
                      FormatCount(summary.threads, "thread"));
 }
 
+bool IsEveryOutcome(const std::vector<harness::EpisodeRecord>& records, const std::string& name) {
+  return !records.empty() && std::all_of(records.begin(), records.end(), [&](const auto& record) {
+    return record.result.outcome == name;
+  });
+}
+
 // Runs the episodes, writing each record as it arrives; returns the exit code.
 int RunAndReport(const lang::CompiledProgram& program, const harness::ControllerFactory& factory,
                  const TestArgs& args, output::LineWriter* records, InterruptWatch& interrupt) {
@@ -133,6 +140,9 @@ int RunAndReport(const lang::CompiledProgram& program, const harness::Controller
         std::chrono::duration<double>(std::chrono::steady_clock::now() - begin).count();
     std::cout << FormatOutcomeTable(summary.records) << std::flush;
     if (!args.quiet) PrintNote(FormatTestSummary(summary, seconds));
+    if (IsEveryOutcome(summary.records, "exit-127")) {
+      PrintNote("every episode exited with code 127: the shell did not find the --exec command");
+    }
     return kExitSuccess;
   } catch (const lang::ScenarioError& error) {
     progress.Erase();
@@ -196,7 +206,9 @@ CommandRunner ConfigureTestCommand(CLI::App& command) {
   auto args = std::make_shared<TestArgs>();
   AddScenarioOptions(command, args->scenario);
   CLI::Option* controller =
-      command.add_option("--controller", args->controller, "a built-in controller (demo-reach)")
+      command
+          .add_option("--controller", args->controller,
+                      "a built-in controller (" + ListControllerNames() + ")")
           ->type_name("NAME");
   command
       .add_option("--exec", args->exec,
