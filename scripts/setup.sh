@@ -15,6 +15,7 @@ packages=(
   libmujoco-dev          # physics for the simulated case study (src/sim)
   libcpp-httplib-dev     # prs view's local HTTP server
   chromium               # prs view's end-to-end test (headless, driven by puppeteer-core)
+  python3                # prs test's example controller (examples/controllers/reach_check.py) in the tests
 )
 # prs view bundles three.js with npm at build time; keep a Node.js that is already installed
 # (e.g. NodeSource's, which ships its own npm) and otherwise take Debian's.

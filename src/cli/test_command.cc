@@ -176,7 +176,8 @@ int RunTest(const TestArgs& args) {
   std::unique_ptr<output::LineWriter> records;
   try {
     if (!args.output.empty()) records = std::make_unique<output::LineWriter>(args.output);
-    if (!args.save_failures_dir.empty()) std::filesystem::create_directories(args.save_failures_dir);
+    if (!args.save_failures_dir.empty())
+      std::filesystem::create_directories(args.save_failures_dir);
   } catch (const std::exception& error) {
     PrintError(error.what());
     return kExitScenarioError;
@@ -205,11 +206,10 @@ CLI::Validator PositiveSeconds() {
 CommandRunner ConfigureTestCommand(CLI::App& command) {
   auto args = std::make_shared<TestArgs>();
   AddScenarioOptions(command, args->scenario);
-  CLI::Option* controller =
-      command
-          .add_option("--controller", args->controller,
-                      "a built-in controller (" + ListControllerNames() + ")")
-          ->type_name("NAME");
+  CLI::Option* controller = command
+                                .add_option("--controller", args->controller,
+                                            "a built-in controller (" + ListControllerNames() + ")")
+                                ->type_name("NAME");
   command
       .add_option("--exec", args->exec,
                   "your own controller: a shell command run once per scene (docs/harness.md)")

@@ -40,8 +40,8 @@ Reach FindNearestRobot(const lang::Scene& scene, const Eigen::Vector3d& p_WC) {
 }
 
 EpisodeResult ClassifyReach(const std::string& cube, const Reach& reach) {
-  const nlohmann::json extra = {{"cube", cube}, {"robot", reach.robot},
-                                {"distance_m", reach.distance_m}};
+  const nlohmann::json extra = {
+      {"cube", cube}, {"robot", reach.robot}, {"distance_m", reach.distance_m}};
   if (reach.distance_m > kPandaReach_m) {
     return {"no-path",
             fmt::format("{} is {:.3f} m from the nearest Robot ({}), beyond the arm's {} m reach",

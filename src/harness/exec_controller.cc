@@ -4,13 +4,12 @@
 #include "harness/exec_controller.h"
 
 #include <fcntl.h>
+#include <fmt/format.h>
 #include <poll.h>
 #include <signal.h>
 #include <spawn.h>
 #include <sys/wait.h>
 #include <unistd.h>
-
-#include <fmt/format.h>
 
 #include <array>
 #include <cerrno>
@@ -113,8 +112,8 @@ std::vector<std::string> MakeEnvironment(const std::string& scene_path,
   std::vector<std::string> env;
   for (char** entry = environ; *entry; ++entry) {
     const std::string_view text(*entry);
-    const bool replaced = text.starts_with("PRS_SCENE_FILE=") ||
-                          text.starts_with("PRS_SEED=") || text.starts_with("PRS_INDEX=");
+    const bool replaced = text.starts_with("PRS_SCENE_FILE=") || text.starts_with("PRS_SEED=") ||
+                          text.starts_with("PRS_INDEX=");
     if (!replaced) env.emplace_back(text);
   }
   env.insert(env.end(), ours.begin(), ours.end());
@@ -195,8 +194,8 @@ ExecAnswer Supervise(pid_t pid, Pipe& out, Pipe& err, double timeout_s,
   while (true) {
     const bool cancelled = cancel && cancel->load(std::memory_order_relaxed);
     if (!ended_at && (cancelled || Clock::now() >= deadline || HasEnded(pid))) {
-      if (!HasEnded(pid)) answer.end = cancelled ? ExecAnswer::End::kCancelled
-                                                 : ExecAnswer::End::kTimedOut;
+      if (!HasEnded(pid))
+        answer.end = cancelled ? ExecAnswer::End::kCancelled : ExecAnswer::End::kTimedOut;
       ::kill(-pid, SIGKILL);  // the whole group: the shell, the controller, their children
       ended_at = Clock::now();
     }

@@ -11,8 +11,8 @@
 namespace prs::harness {
 
 struct ExecOptions {
-  std::string command;     // run as `/bin/sh -c COMMAND`
-  double timeout_s = 60;   // per episode; the process group is killed after it
+  std::string command;    // run as `/bin/sh -c COMMAND`
+  double timeout_s = 60;  // per episode; the process group is killed after it
   /// Polled every 50 ms; once true the running episode's process group is killed and the
   /// episode ends as "cancelled".
   const std::atomic<bool>* cancel = nullptr;

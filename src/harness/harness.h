@@ -21,7 +21,7 @@ struct EpisodeResult {
   /// "success", "perception-fault", "no-path", "poor-grip", or any other lowercase-hyphenated
   /// name (IsOutcomeName).
   std::string outcome;
-  std::string detail;  // one sentence for a person
+  std::string detail;                               // one sentence for a person
   nlohmann::json extra = nlohmann::json::object();  // anything else the controller reports
 };
 

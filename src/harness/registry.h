@@ -10,7 +10,7 @@
 namespace prs::harness {
 
 struct ControllerInfo {
-  std::string name;  // lowercase-hyphenated, e.g. "table-cube"
+  std::string name;         // lowercase-hyphenated, e.g. "table-cube"
   std::string description;  // one line for `prs test --help` and error messages
   ControllerFactory factory;
 };

@@ -61,8 +61,8 @@ EpisodeResult RunGuarded(Controller& controller, const sampling::SampledScene& s
 // DIR/seed-S-index-I.json holds the scene line; returns the stem DIR/seed-S-index-I.
 std::string SaveFailedScene(const std::string& dir, const sampling::SampledScene& scene,
                             const std::string& scene_json) {
-  const std::string stem = dir + "/seed-" + std::to_string(scene.seed) + "-index-" +
-                           std::to_string(scene.index);
+  const std::string stem =
+      dir + "/seed-" + std::to_string(scene.seed) + "-index-" + std::to_string(scene.index);
   const std::string path = stem + ".json";
   std::ofstream file(path, std::ios::binary | std::ios::trunc);
   file << scene_json << '\n';
@@ -85,8 +85,7 @@ class EpisodeRunner {
     std::unique_ptr<Controller> controller = pool_.Take();
     const auto begin = std::chrono::steady_clock::now();
     record.result = RunGuarded(*controller, scene, scene_json);
-    record.wall_s =
-        std::chrono::duration<double>(std::chrono::steady_clock::now() - begin).count();
+    record.wall_s = std::chrono::duration<double>(std::chrono::steady_clock::now() - begin).count();
     pool_.Give(std::move(controller));
     if (record.result.outcome != "success") RecordFailure(scene, scene_json, record);
     return record;

@@ -133,8 +133,8 @@ TEST_F(PrsTestCommandTest, FailingScenesAreSavedAndTheirCommandRegeneratesThem) 
     }
     ++failures;
     EXPECT_EQ(record["saved_scene"], saved.string());
-    EXPECT_EQ(record["regenerate"], "prs sample " + Example("table_cube.prs") + " -s 1 --start " +
-                                        index + " -n 1");
+    EXPECT_EQ(record["regenerate"],
+              "prs sample " + Example("table_cube.prs") + " -s 1 --start " + index + " -n 1");
     const Result again = Run({"sample", Example("table_cube.prs"), "-s", "1", "--index", index});
     EXPECT_EQ(again.exit_code, 0) << again.err;
     EXPECT_EQ(again.out, ReadText(saved)) << "the saved scene is not scene " << index;

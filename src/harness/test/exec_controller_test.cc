@@ -59,10 +59,9 @@ bool IsGone(pid_t pid) {
 }
 
 TEST_F(ExecControllerTest, SceneArrivesOnStdinAndInTheNamedFileWithSeedAndIndex) {
-  const EpisodeResult result =
-      Run("cat > " + D() + "/stdin.txt; cat \"$PRS_SCENE_FILE\" > " + D() + "/file.txt; echo " +
-          "\"$PRS_SEED $PRS_INDEX\" > " + D() + "/ids.txt; echo \"$PRS_SCENE_FILE\" > " + D() +
-          "/path.txt");
+  const EpisodeResult result = Run("cat > " + D() + "/stdin.txt; cat \"$PRS_SCENE_FILE\" > " + D() +
+                                   "/file.txt; echo " + "\"$PRS_SEED $PRS_INDEX\" > " + D() +
+                                   "/ids.txt; echo \"$PRS_SCENE_FILE\" > " + D() + "/path.txt");
   EXPECT_EQ(result.outcome, "success") << result.detail;
   EXPECT_EQ(Read("stdin.txt"), std::string(kSceneJson) + "\n");
   EXPECT_EQ(Read("file.txt"), std::string(kSceneJson) + "\n");
@@ -83,9 +82,9 @@ TEST_F(ExecControllerTest, ExitCodesBecomeOutcomes) {
 }
 
 TEST_F(ExecControllerTest, JsonAnswerOnTheLastLineWinsAndKeepsTheOtherKeys) {
-  const EpisodeResult result = Run(
-      "echo 'log line'; echo '{\"outcome\": \"poor-grip\", \"detail\": \"slipped\", "
-      "\"force_N\": 2.5}'; echo; exit 4");
+  const EpisodeResult result =
+      Run("echo 'log line'; echo '{\"outcome\": \"poor-grip\", \"detail\": \"slipped\", "
+          "\"force_N\": 2.5}'; echo; exit 4");
   EXPECT_EQ(result.outcome, "poor-grip");
   EXPECT_EQ(result.detail, "slipped");
   EXPECT_EQ(result.extra, nlohmann::json({{"force_N", 2.5}}));

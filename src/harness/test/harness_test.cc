@@ -100,8 +100,10 @@ TEST(RunEpisodesTest, FailuresCarryTheRegenerateCommand) {
     if (record.result.outcome == "success") {
       EXPECT_TRUE(record.regenerate.empty());
     } else {
-      EXPECT_EQ(record.regenerate, "prs sample examples/table_cube.prs -p 'x=my value' -s 3 "
-                                   "--start " + std::to_string(record.index) + " -n 1");
+      EXPECT_EQ(record.regenerate,
+                "prs sample examples/table_cube.prs -p 'x=my value' -s 3 "
+                "--start " +
+                    std::to_string(record.index) + " -n 1");
     }
   }
 }
@@ -110,8 +112,8 @@ TEST(RunEpisodesTest, ThrowingControllerBecomesControllerError) {
   auto program = CompileTableCube();
   RunOptions options = MakeOptions(1, 1);
   options.start = 5;
-  const RunSummary summary =
-      RunEpisodes(*program, [] { return std::make_unique<CubeSideController>(); }, options);
+  const RunSummary summary = RunEpisodes(
+      *program, [] { return std::make_unique<CubeSideController>(); }, options);
   ASSERT_EQ(summary.records.size(), 1u);
   EXPECT_EQ(summary.records[0].result.outcome, "controller-error");
   EXPECT_EQ(summary.records[0].result.detail, "camera unplugged");
@@ -131,12 +133,11 @@ TEST(RunEpisodesTest, FailingScenesAreSavedAndTheHookGetsTheirStems) {
     std::lock_guard lock(mutex);
     hooked.insert(stem);
   };
-  const RunSummary summary =
-      RunEpisodes(*program, [] { return std::make_unique<CubeSideController>(); }, options);
+  const RunSummary summary = RunEpisodes(
+      *program, [] { return std::make_unique<CubeSideController>(); }, options);
   std::set<std::string> expected;
   for (const EpisodeRecord& record : summary.records) {
-    const std::string stem =
-        (dir / ("seed-3-index-" + std::to_string(record.index))).string();
+    const std::string stem = (dir / ("seed-3-index-" + std::to_string(record.index))).string();
     if (record.result.outcome == "success") {
       EXPECT_FALSE(fs::exists(stem + ".json"));
       continue;
@@ -157,9 +158,14 @@ TEST(RunEpisodesTest, FailingScenesAreSavedAndTheHookGetsTheirStems) {
 
 TEST(TabulateOutcomesTest, SuccessFirstThenByCountAndSharesAddUp) {
   std::vector<EpisodeRecord> records;
-  for (const char* outcome : {"no-path", "poor-grip", "success", "no-path", "abc", "poor-grip",
-                              "no-path", "success"}) {
-    records.push_back({.seed = 0, .index = 0, .result = {outcome, ""}, .wall_s = 0, .saved_scene = {}, .regenerate = {}});
+  for (const char* outcome :
+       {"no-path", "poor-grip", "success", "no-path", "abc", "poor-grip", "no-path", "success"}) {
+    records.push_back({.seed = 0,
+                       .index = 0,
+                       .result = {outcome, ""},
+                       .wall_s = 0,
+                       .saved_scene = {},
+                       .regenerate = {}});
   }
   const std::vector<OutcomeRow> rows = TabulateOutcomes(records);
   ASSERT_EQ(rows.size(), 4u);
@@ -179,8 +185,12 @@ TEST(TabulateOutcomesTest, SuccessFirstThenByCountAndSharesAddUp) {
 }
 
 TEST(FormatRecordJsonTest, KeysInOrderWithExtraAndRegenerate) {
-  EpisodeRecord record{.seed = 1, .index = 2, .result = {"no-path", "far", {{"d_m", 0.9}}},
-                       .wall_s = 0.5, .saved_scene = {}, .regenerate = "prs sample f -s 1"};
+  EpisodeRecord record{.seed = 1,
+                       .index = 2,
+                       .result = {"no-path", "far", {{"d_m", 0.9}}},
+                       .wall_s = 0.5,
+                       .saved_scene = {},
+                       .regenerate = "prs sample f -s 1"};
   EXPECT_EQ(FormatRecordJson(record),
             R"({"seed":1,"index":2,"outcome":"no-path","detail":"far","wall_s":0.5,)"
             R"("extra":{"d_m":0.9},"regenerate":"prs sample f -s 1"})");
@@ -203,8 +213,7 @@ TEST(RegistryTest, DemoReachIsBuiltInAndNamesAreUnique) {
   EXPECT_EQ(FindController("demo-rech"), nullptr);
   EXPECT_THROW(RegisterController("demo-reach", "again", MakeDemoReachController),
                std::invalid_argument);
-  EXPECT_THROW(RegisterController("Bad Name", "x", MakeDemoReachController),
-               std::invalid_argument);
+  EXPECT_THROW(RegisterController("Bad Name", "x", MakeDemoReachController), std::invalid_argument);
   RegisterController("test-only", "for this test", MakeDemoReachController);
   std::vector<std::string> names;
   for (const ControllerInfo& info : ListControllers()) names.push_back(info.name);
