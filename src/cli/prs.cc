@@ -20,7 +20,7 @@ const std::vector<Command>& CommandTable() {
        ConfigureCheckCommand},
       {"stats", "sample scenes and report acceptance, rejections and speed", ConfigureStatsCommand},
       {"view", "look at scenes in a local web viewer (or write one HTML file)", ConfigureViewCommand},
-      {"test", "run a controller in sampled scenes and tabulate its outcomes", ConfigureTestCommand},
+      {"test", "run a controller in sampled scenes, tabulate outcomes", ConfigureTestCommand},
   };
   return kCommands;
 }

@@ -11,6 +11,7 @@
 #include <filesystem>
 #include <fstream>
 #include <sstream>
+#include <thread>
 
 namespace prs::harness {
 namespace {
@@ -50,12 +51,17 @@ class ExecControllerTest : public testing::Test {
   sampling::SampledScene scene_;
 };
 
-// A process that no longer exists, or a zombie waiting for its (new) parent to reap it.
+// True once `pid` no longer runs: it does not exist, or is a zombie waiting for its new parent
+// to reap it. A SIGKILL takes effect asynchronously, so this waits up to 2 s.
 bool IsGone(pid_t pid) {
-  std::ifstream stat("/proc/" + std::to_string(pid) + "/stat");
-  std::string pid_text, name, state;
-  if (!(stat >> pid_text >> name >> state)) return true;
-  return state == "Z" || state == "X";
+  const auto deadline = std::chrono::steady_clock::now() + std::chrono::seconds(2);
+  do {
+    std::ifstream stat("/proc/" + std::to_string(pid) + "/stat");
+    std::string pid_text, name, state;
+    if (!(stat >> pid_text >> name >> state) || state == "Z" || state == "X") return true;
+    std::this_thread::sleep_for(std::chrono::milliseconds(10));
+  } while (std::chrono::steady_clock::now() < deadline);
+  return false;
 }
 
 TEST_F(ExecControllerTest, SceneArrivesOnStdinAndInTheNamedFileWithSeedAndIndex) {

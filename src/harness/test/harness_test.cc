@@ -18,15 +18,14 @@ namespace prs::harness {
 namespace {
 
 namespace fs = std::filesystem;
+using sampling::testing_checks::CompileOrDie;
 using sampling::testing_checks::RepoPath;
 
+// The paper's Figure 1, compiled from its file (its import resolves beside it).
 std::unique_ptr<lang::CompiledProgram> CompileTableCube() {
-  lang::DiagnosticEngine diagnostics;
-  lang::CompileOptions options;
-  options.search_path = {RepoPath("examples")};
-  auto program = lang::CompileFile(RepoPath("examples/table_cube.prs"), options, diagnostics);
-  EXPECT_FALSE(diagnostics.has_errors());
-  return program;
+  std::ifstream file(RepoPath("examples/table_cube.prs"));
+  const std::string text((std::istreambuf_iterator<char>(file)), std::istreambuf_iterator<char>());
+  return CompileOrDie(text, "examples/table_cube.prs");
 }
 
 // Decides from the scene: the Cube's x position, so the outcome is a pure function of it.
