@@ -12,6 +12,9 @@ packages=(
   libcli11-dev           # the prs command line
   nlohmann-json3-dev     # scene JSON output and parsing
   clang libclang-rt-14-dev  # libFuzzer for the front-end fuzz target
+  pybind11-dev python3-dev python3-numpy  # the Python package (python/)
+  python3-pip python3-setuptools python3-wheel  # pip install --no-build-isolation . (offline)
+  python3-pytest python3-matplotlib  # Python tests and the plotting example
 )
 
 missing=()

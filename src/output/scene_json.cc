@@ -94,11 +94,6 @@ void AppendValue(const lang::Value& v, Out& out) {
   AppendString(lang::Repr(v), out);
 }
 
-bool IsCoreProperty(const std::string& name) {
-  return name == "position" || name == "orientation" || name == "width" || name == "length" ||
-         name == "height" || name == "yaw" || name == "pitch" || name == "roll";
-}
-
 void AppendProperties(const lang::SceneObject& o, Out& out) {
   out += '{';
   bool first = true;
@@ -164,6 +159,11 @@ void AppendParams(const lang::Scene& scene, Out& out) {
 }
 
 }  // namespace
+
+bool IsCoreProperty(const std::string& name) {
+  return name == "position" || name == "orientation" || name == "width" || name == "length" ||
+         name == "height" || name == "yaw" || name == "pitch" || name == "roll";
+}
 
 std::string FormatSceneJson(const sampling::SampledScene& sampled) {
   std::string out;

@@ -10,4 +10,8 @@ namespace prs::output {
 /// Renders one sampled scene as a single line of JSON (no trailing newline).
 std::string FormatSceneJson(const sampling::SampledScene& sampled);
 
+/// True for the properties §8 writes outside "properties" (position, orientation, width,
+/// length, height, yaw, pitch, roll).
+bool IsCoreProperty(const std::string& name);
+
 }  // namespace prs::output
