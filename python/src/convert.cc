@@ -70,8 +70,8 @@ Eigen::Vector3d CalcObjectYawPitchRoll(const lang::SceneObject& object) {
 void RaiseScenarioError(const lang::Diagnostic& diagnostic, const lang::SourceManager& sources,
                         const std::string& text, const std::string& file_name) {
   const py::module_ errors = py::module_::import("probrobscene._errors");
-  const py::object type = errors.attr(diagnostic.id == "sampling-failed" ? "SamplingError"
-                                                                          : "ScenarioError");
+  const py::object type =
+      errors.attr(diagnostic.id == "sampling-failed" ? "SamplingError" : "ScenarioError");
   py::object file = py::none(), line = py::none(), column = py::none();
   if (!file_name.empty()) file = py::str(file_name);
   if (diagnostic.has_span && diagnostic.span.file < sources.file_count()) {

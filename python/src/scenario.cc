@@ -160,8 +160,7 @@ py::list Scenario::DescribeSites(const analysis::ScenarioOutline& outline,
     const analysis::SiteVariation none;
     const analysis::SiteVariation& variation = created ? found->second : none;
     // A site absent from some scenes created no object there: its minimum count is 0.
-    entry["min_objects"] =
-        variation.scenes_present < observer.scenes() ? 0 : variation.min_objects;
+    entry["min_objects"] = variation.scenes_present < observer.scenes() ? 0 : variation.min_objects;
     entry["max_objects"] = variation.max_objects;
     entry["varied"] = variation.varied;
     sites.append(entry);

@@ -154,8 +154,8 @@ void BindSceneClass(py::module_& m) {
           "The spec §8 JSON object as Python dicts and lists (to_json(), parsed).")
       .def("__repr__", [](const Scene& s) {
         return "<Scene seed=" + std::to_string(s.sampled.seed) +
-               " index=" + std::to_string(s.sampled.index) + " objects=" +
-               std::to_string(s.sampled.scene.objects.size()) + ">";
+               " index=" + std::to_string(s.sampled.index) +
+               " objects=" + std::to_string(s.sampled.scene.objects.size()) + ">";
       });
 }
 
@@ -170,8 +170,7 @@ void BindBatchHelpers(py::module_& m) {
   m.def(
       "dimensions",
       [](const py::iterable& scenes, const std::string& name) {
-        return GatherRows(scenes, name, 3,
-                          [](const lang::SceneObject& o) { return o.dimensions; });
+        return GatherRows(scenes, name, 3, [](const lang::SceneObject& o) { return o.dimensions; });
       },
       py::arg("scenes"), py::arg("name"), "(width, length, height) of `name` per scene, (n, 3).");
   m.def(
