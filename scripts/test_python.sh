@@ -29,8 +29,8 @@ esac
 # directory, reusing the build above; then the import from a directory outside the tree.
 site=$(mktemp -d)
 trap 'rm -rf "$site"' EXIT
-PRS_CMAKE_BUILD_DIR=$build "$python" -m pip install --quiet --no-index --no-build-isolation \
-  --no-deps --target "$site" .
+PRS_CMAKE_BUILD_DIR=$build "$python" -m pip install --quiet --root-user-action=ignore \
+  --no-index --no-build-isolation --no-deps --target "$site" .
 (cd / && PYTHONPATH=$site "$python" -c '
 import sys, probrobscene
 assert probrobscene.__file__.startswith(sys.argv[1]), probrobscene.__file__

@@ -63,7 +63,14 @@ template <typename Row>
 py::array_t<double> GatherRows(const py::iterable& scenes, const std::string& name, int width,
                                Row row) {
   std::vector<double> values;
+  size_t position = 0;
   for (const py::handle item : scenes) {
+    if (!py::isinstance<Scene>(item)) {
+      throw py::type_error("expected Scene objects, got " +
+                           std::string(py::str(py::type::of(item).attr("__name__"))) +
+                           " at position " + std::to_string(position));
+    }
+    ++position;
     const Scene& scene = item.cast<const Scene&>();
     const int index = FindObject(scene, name);
     if (index < 0) ThrowNoObject(scene, name);

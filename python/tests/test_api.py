@@ -75,6 +75,8 @@ def test_batch_helpers_stack_one_object_over_scenes(table_cube):
     assert np.ptp(xyz[:, 0]) > 0, "the cube's position is random"
     with pytest.raises(KeyError, match="no object named 'c9'.*Cube#5"):
         prs.positions(scenes, "c9")
+    with pytest.raises(TypeError, match="expected Scene objects, got int at position 1"):
+        prs.positions([scenes[0], 3], "t")
 
 
 def test_check_summarises_sites_classes_and_randomness(prs_binary, table_cube):
