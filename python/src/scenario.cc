@@ -3,6 +3,7 @@
 // and the properties seen to vary, as `prs check` prints them).
 #include <pybind11/stl.h>
 
+#include <algorithm>
 #include <chrono>
 #include <thread>
 
@@ -15,6 +16,7 @@ namespace prs::python {
 namespace {
 
 using Clock = std::chrono::steady_clock;
+constexpr int kMaxThreads = 1024;
 
 std::string RenderErrors(const lang::DiagnosticEngine& diagnostics,
                          const lang::SourceManager& sources) {
@@ -44,7 +46,7 @@ class Scenario {
   std::vector<ScenePtr> SampleBatch(int64_t count, uint64_t seed, uint64_t start,
                                     std::optional<int> threads) {
     std::vector<sampling::SampledScene> sampled;
-    if (count > 0) sampled.reserve(size_t(count));
+    sampled.reserve(size_t(std::clamp<int64_t>(count, 0, 1 << 16)));  // n may be a guess
     RunBatch(count, seed, start, threads,
              [&](sampling::BatchScene&& scene) { sampled.push_back(std::move(scene.sampled)); });
     std::vector<ScenePtr> scenes;
@@ -104,14 +106,15 @@ class Scenario {
 };
 
 // Samples scenes start..start+count-1 on `threads` workers (default: every hardware thread)
-// with the GIL released, handing each to `consume` in index order on this thread. Checks about
-// every 100 ms for a pending Python signal (Ctrl-C), which stops the batch and is raised.
+// with the GIL released, handing each to `consume` in index order on this thread. Checks for a
+// pending Python signal (Ctrl-C) between scenes, at most every 100 ms; one stops the batch.
 template <typename Consume>
 void Scenario::RunBatch(int64_t count, uint64_t seed, uint64_t start, std::optional<int> threads,
                         Consume consume) {
   if (count < 0) throw py::value_error("n must be >= 0, got " + std::to_string(count));
-  if (threads && *threads < 1) {
-    throw py::value_error("threads must be >= 1, got " + std::to_string(*threads));
+  if (threads && (*threads < 1 || *threads > kMaxThreads)) {  // the same bounds as `prs`
+    throw py::value_error("threads must be from 1 to " + std::to_string(kMaxThreads) + ", got " +
+                          std::to_string(*threads));
   }
   sampling::BatchOptions options;
   options.sample = options_;

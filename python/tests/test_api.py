@@ -102,8 +102,10 @@ def test_check_summarises_sites_classes_and_randomness(prs_binary, table_cube):
 def test_bad_arguments_raise_python_errors(table_cube):
     with pytest.raises(ValueError, match="n must be >= 0"):
         table_cube.sample_batch(-1)
-    with pytest.raises(ValueError, match="threads must be >= 1"):
+    with pytest.raises(ValueError, match="threads must be from 1 to 1024, got 0"):
         table_cube.sample_batch(2, threads=0)
+    with pytest.raises(ValueError, match="threads must be from 1 to 1024, got 5000"):
+        table_cube.check(threads=5000)
     with pytest.raises(TypeError):
         table_cube.sample(seed=-1)
     with pytest.raises(TypeError, match="param 'size': expected a number or a string"):
