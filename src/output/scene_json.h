@@ -2,6 +2,7 @@
 #pragma once
 
 #include <string>
+#include <string_view>
 
 #include "sampling/sampler.h"
 
@@ -12,6 +13,6 @@ std::string FormatSceneJson(const sampling::SampledScene& sampled);
 
 /// True for the properties §8 writes outside "properties" (position, orientation, width,
 /// length, height, yaw, pitch, roll).
-bool IsCoreProperty(const std::string& name);
+bool IsCoreProperty(std::string_view name);
 
 }  // namespace prs::output
