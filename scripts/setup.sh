@@ -15,6 +15,9 @@ packages=(
   libmujoco-dev          # physics for the simulated case study (src/sim)
   libcpp-httplib-dev     # prs view's local HTTP server
   chromium               # prs view's end-to-end test (headless, driven by puppeteer-core)
+  pybind11-dev python3-dev python3-numpy  # the Python package (python/)
+  python3-pip python3-setuptools python3-wheel  # pip install --no-build-isolation . (offline)
+  python3-pytest python3-matplotlib  # Python tests and the plotting example
   python3                # prs test's example controller (examples/controllers/reach_check.py) in the tests
 )
 # prs view bundles three.js with npm at build time; keep a Node.js that is already installed
