@@ -12,6 +12,7 @@
 
 #include "cli/commands.h"
 #include "cli/common.h"
+#include "cli/failure_pictures.h"
 #include "cli/interrupt.h"
 #include "cli/progress.h"
 #include "cli/text_table.h"
@@ -86,7 +87,8 @@ harness::RunOptions MakeRunOptions(const TestArgs& args, const std::atomic<bool>
   options.threads = args.sampling.threads;
   options.scenario_args = MakeScenarioArgs(args);
   options.save_failures_dir = args.save_failures_dir;
-  // A picture per failure (FailureHook) is left for `prs render`'s library to fill in.
+  // Pictures are drawn after the run from the saved JSON (failure_pictures.h), so no
+  // FailureHook is needed here.
   options.cancel = &cancel;
   return options;
 }
@@ -121,6 +123,26 @@ bool IsEveryOutcome(const std::vector<harness::EpisodeRecord>& records, const st
   });
 }
 
+// After the table: a picture beside each saved failing scene (when the renderer is built in),
+// and where they are.
+int ReportSavedFailures(const harness::RunSummary& summary, const TestArgs& args) {
+  const int64_t saved =
+      std::count_if(summary.records.begin(), summary.records.end(),
+                    [](const auto& record) { return !record.saved_scene.empty(); });
+  int64_t drawn = 0;
+  try {
+    drawn = DrawFailurePictures(summary.records);
+  } catch (const std::exception& error) {
+    PrintError(std::string("cannot draw the failing scenes: ") + error.what());
+    return kExitScenarioError;
+  }
+  if (!args.quiet && saved > 0) {
+    PrintNote(fmt::format("{} saved in {} ({})", FormatCount(saved, "failing scene"),
+                          args.save_failures_dir, drawn > 0 ? "JSON and PNG" : "JSON"));
+  }
+  return kExitSuccess;
+}
+
 // Runs the episodes, writing each record as it arrives; returns the exit code.
 int RunAndReport(const lang::CompiledProgram& program, const harness::ControllerFactory& factory,
                  const TestArgs& args, output::LineWriter* records, InterruptWatch& interrupt) {
@@ -143,7 +165,7 @@ int RunAndReport(const lang::CompiledProgram& program, const harness::Controller
     if (IsEveryOutcome(summary.records, "exit-127")) {
       PrintNote("every episode exited with code 127: the shell did not find the --exec command");
     }
-    return kExitSuccess;
+    return args.save_failures_dir.empty() ? kExitSuccess : ReportSavedFailures(summary, args);
   } catch (const lang::ScenarioError& error) {
     progress.Erase();
     return ReportScenarioError(error, program.sources);

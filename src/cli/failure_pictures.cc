@@ -1,0 +1,55 @@
+// Draws failing scenes from their saved JSON lines. The renderer comes from the rendering
+// branch of the project; until it is merged (no render/render.h) nothing is drawn.
+#include "cli/failure_pictures.h"
+
+#if __has_include("render/render.h")
+
+#include <fmt/format.h>
+
+#include <filesystem>
+#include <fstream>
+#include <memory>
+#include <stdexcept>
+
+#include "render/render.h"
+#include "render/scene_input.h"
+
+namespace prs::cli {
+
+bool CanDrawFailurePictures() { return true; }
+
+int64_t DrawFailurePictures(const std::vector<harness::EpisodeRecord>& records) {
+  std::unique_ptr<render::Renderer> renderer;  // made only when there is a failure to draw
+  int64_t drawn = 0;
+  for (const harness::EpisodeRecord& record : records) {
+    if (record.saved_scene.empty()) continue;
+    std::ifstream file(record.saved_scene);
+    std::string line;
+    if (!std::getline(file, line)) throw std::runtime_error("cannot read " + record.saved_scene);
+    // The JSON, not the sampled scene: the scene's workspace region may be shared with the
+    // sampler's threads, and the saved file is what the user will look at anyway.
+    render::RenderScene scene = render::ParseRenderSceneJson(line);
+    scene.caption =
+        fmt::format("seed {}  scene {}  {}", record.seed, record.index, record.result.outcome);
+    if (!renderer) renderer = std::make_unique<render::Renderer>();
+    const std::filesystem::path png =
+        std::filesystem::path(record.saved_scene).replace_extension(".png");
+    render::WritePng(renderer->Render(scene, render::RenderOptions{}), png.string());
+    ++drawn;
+  }
+  return drawn;
+}
+
+}  // namespace prs::cli
+
+#else
+
+namespace prs::cli {
+
+bool CanDrawFailurePictures() { return false; }
+
+int64_t DrawFailurePictures(const std::vector<harness::EpisodeRecord>&) { return 0; }
+
+}  // namespace prs::cli
+
+#endif
