@@ -1,8 +1,8 @@
-// Draws failing scenes from their saved JSON lines. The renderer comes from the rendering
-// branch of the project; until it is merged (no render/render.h) nothing is drawn.
+// Draws failing scenes from their saved JSON lines with src/render. PRS_HAVE_RENDER is set by
+// src/cli/CMakeLists.txt when the prs_render library is part of the build; else nothing is drawn.
 #include "cli/failure_pictures.h"
 
-#if __has_include("render/render.h")
+#if PRS_HAVE_RENDER
 
 #include <fmt/format.h>
 

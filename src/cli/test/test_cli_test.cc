@@ -135,11 +135,19 @@ TEST_F(PrsTestCommandTest, FailingScenesAreSavedAndTheirCommandRegeneratesThem) 
     EXPECT_EQ(record["saved_scene"], saved.string());
     EXPECT_EQ(record["regenerate"],
               "prs sample " + Example("table_cube.prs") + " -s 1 --start " + index + " -n 1");
+    const fs::path png = fs::path(saved).replace_extension(".png");
+#if PRS_HAVE_RENDER
+    EXPECT_EQ(ReadText(png).substr(0, 8), "\x89PNG\r\n\x1a\n") << "no picture " << png;
+#else
+    EXPECT_FALSE(fs::exists(png)) << "a picture without the renderer?";
+#endif
     const Result again = Run({"sample", Example("table_cube.prs"), "-s", "1", "--index", index});
     EXPECT_EQ(again.exit_code, 0) << again.err;
     EXPECT_EQ(again.out, ReadText(saved)) << "the saved scene is not scene " << index;
   }
   EXPECT_EQ(failures, 1);  // scene 17
+  EXPECT_NE(r.err.find("prs: 1 failing scene saved in " + Path("failures")), std::string::npos)
+      << r.err;
 }
 
 TEST_F(PrsTestCommandTest, HangingAndKilledControllersAreOutcomes) {
