@@ -4,6 +4,7 @@
 #include <nlohmann/json.hpp>
 
 #include "cli/test/prs_test_fixture.h"
+#include "harness/test/process_checks.h"
 
 namespace prs::cli {
 namespace {
@@ -157,6 +158,30 @@ TEST_F(PrsTestCommandTest, HangingAndKilledControllersAreOutcomes) {
   EXPECT_EQ(CountOutcomes(ReadRecords(Path("r.jsonl"))),
             (std::map<std::string, int64_t>{{"signal-9", 2}, {"timeout", 1}}));
   EXPECT_NE(r.out.find("timeout"), std::string::npos) << r.out;
+}
+
+TEST_F(PrsTestCommandTest, TerminationKillsRunningControllersAndSaysWhereToResume) {
+  // Controllers that note their pid and hang; prs gets SIGTERM once one has started.
+  const std::string controller = "echo $$ > " + Quote(Path("pid")) + ".$PRS_INDEX; exec sleep 30";
+  const std::string script =
+      Quote(PRS_BINARY) + " test " + Quote(Example("table_cube.prs")) + " --exec " +
+      Quote(controller) + " -n 4 --threads 2 -o " + Quote(Path("r.jsonl")) + " 2>" +
+      Quote(Path("err.txt")) + " & pid=$!; i=0; while [ ! -s " + Quote(Path("pid")) +
+      ".0 ] && [ $i -lt 100 ]; do sleep 0.1; i=$((i+1)); done; kill -TERM $pid; wait $pid; " +
+      "echo $? > " + Quote(Path("rc.txt"));
+  const auto begin = std::chrono::steady_clock::now();
+  ASSERT_EQ(std::system(("sh -c " + Quote(script)).c_str()), 0);
+  EXPECT_LT(std::chrono::duration<double>(std::chrono::steady_clock::now() - begin).count(), 15);
+  EXPECT_EQ(ReadText(Path("rc.txt")), "143\n");  // 128 + SIGTERM
+  EXPECT_NE(ReadText(Path("err.txt")).find("interrupted after 0 episodes (resume with --start 0"),
+            std::string::npos)
+      << ReadText(Path("err.txt"));
+  EXPECT_TRUE(fs::exists(Path("r.jsonl.partial")));
+  for (const char* index : {"0", "1"}) {
+    const std::string pid = ReadText(Path("pid") + "." + index);
+    if (pid.empty()) continue;  // that episode had not started
+    EXPECT_TRUE(harness::testing_checks::IsGone(std::stoi(pid))) << "controller " << index;
+  }
 }
 
 TEST_F(PrsTestCommandTest, SampleIndexIsOneSceneAtThatIndex) {

@@ -11,12 +11,14 @@
 #include <filesystem>
 #include <fstream>
 #include <sstream>
-#include <thread>
+
+#include "harness/test/process_checks.h"
 
 namespace prs::harness {
 namespace {
 
 namespace fs = std::filesystem;
+using testing_checks::IsGone;
 
 class ExecControllerTest : public testing::Test {
  protected:
@@ -50,19 +52,6 @@ class ExecControllerTest : public testing::Test {
   fs::path dir_;
   sampling::SampledScene scene_;
 };
-
-// True once `pid` no longer runs: it does not exist, or is a zombie waiting for its new parent
-// to reap it. A SIGKILL takes effect asynchronously, so this waits up to 2 s.
-bool IsGone(pid_t pid) {
-  const auto deadline = std::chrono::steady_clock::now() + std::chrono::seconds(2);
-  do {
-    std::ifstream stat("/proc/" + std::to_string(pid) + "/stat");
-    std::string pid_text, name, state;
-    if (!(stat >> pid_text >> name >> state) || state == "Z" || state == "X") return true;
-    std::this_thread::sleep_for(std::chrono::milliseconds(10));
-  } while (std::chrono::steady_clock::now() < deadline);
-  return false;
-}
 
 TEST_F(ExecControllerTest, SceneArrivesOnStdinAndInTheNamedFileWithSeedAndIndex) {
   const EpisodeResult result = Run("cat > " + D() + "/stdin.txt; cat \"$PRS_SCENE_FILE\" > " + D() +
