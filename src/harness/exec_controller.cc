@@ -8,6 +8,7 @@
 #include <poll.h>
 #include <signal.h>
 #include <spawn.h>
+#include <sys/syscall.h>
 #include <sys/wait.h>
 #include <unistd.h>
 
@@ -182,6 +183,24 @@ bool ReadInto(int fd, std::string& tail) {
   return true;
 }
 
+// A descriptor that becomes readable when the process ends (a pidfd, Linux 5.3+), so that the
+// end is seen at once; -1 where pidfds are unavailable, and then the poll interval bounds the
+// delay.
+class ProcessFd {
+ public:
+  // The raw system call: Debian 12's <sys/pidfd.h> declares pidfd_open without C linkage.
+  explicit ProcessFd(pid_t pid) : fd_(int(::syscall(SYS_pidfd_open, pid, 0))) {}
+  ~ProcessFd() {
+    if (fd_ >= 0) ::close(fd_);
+  }
+  ProcessFd(const ProcessFd&) = delete;
+  ProcessFd& operator=(const ProcessFd&) = delete;
+  int fd() const { return fd_; }
+
+ private:
+  int fd_;
+};
+
 // Reads the pipes until the process has ended and they are closed, killing the process
 // group when it ends, at the deadline, or on cancellation. Leaves the process unreaped.
 ExecAnswer Supervise(pid_t pid, Pipe& out, Pipe& err, double timeout_s,
@@ -189,7 +208,9 @@ ExecAnswer Supervise(pid_t pid, Pipe& out, Pipe& err, double timeout_s,
   ExecAnswer answer;
   const auto deadline = Clock::now() + std::chrono::duration<double>(timeout_s);
   std::optional<Clock::time_point> ended_at;
-  std::array<pollfd, 2> fds = {pollfd{out.read_fd, POLLIN, 0}, pollfd{err.read_fd, POLLIN, 0}};
+  const ProcessFd process(pid);
+  std::array<pollfd, 3> fds = {pollfd{out.read_fd, POLLIN, 0}, pollfd{err.read_fd, POLLIN, 0},
+                               pollfd{process.fd(), POLLIN, 0}};
   std::array<std::string*, 2> tails = {&answer.stdout_tail, &answer.stderr_tail};
   while (true) {
     const bool cancelled = cancel && cancel->load(std::memory_order_relaxed);
@@ -202,12 +223,13 @@ ExecAnswer Supervise(pid_t pid, Pipe& out, Pipe& err, double timeout_s,
     const bool pipes_open = fds[0].fd >= 0 || fds[1].fd >= 0;
     if (ended_at && (!pipes_open || Clock::now() - *ended_at > kDrainLimit)) break;
     if (::poll(fds.data(), fds.size(), kPollIntervalMs) < 0 && errno != EINTR) break;
-    for (size_t i = 0; i < fds.size(); ++i) {
+    for (size_t i = 0; i < tails.size(); ++i) {
       if (fds[i].fd >= 0 && (fds[i].revents & (POLLIN | POLLHUP | POLLERR)) &&
           !ReadInto(fds[i].fd, *tails[i])) {
         fds[i].fd = -1;  // end of file: poll ignores negative descriptors
       }
     }
+    if (fds[2].revents != 0) fds[2].fd = -1;  // ended: HasEnded says so from now on
   }
   return answer;
 }
