@@ -218,11 +218,17 @@ TEST_F(PrsTestCommandTest, BadFlagsAreUsageErrorsNamingTheFlag) {
   }
 }
 
-TEST_F(PrsTestCommandTest, ScenarioErrorsExitOneWithTheirLocation) {
+TEST_F(PrsTestCommandTest, ScenarioErrorsExitOneAndSamplingFailuresThree) {
   const std::string file = Write("bad.prs", "from model import *\nc = Cube on nowhere\n");
   const Result r = Run({"test", file, "-I", Example(""), "--controller", "demo-reach", "-n", "2"});
   EXPECT_EQ(r.exit_code, 1);
   EXPECT_NE(r.err.find("bad.prs:2:"), std::string::npos) << r.err;
+  const std::string impossible =
+      Write("impossible.prs", "from model import *\nc = Cube on floor\nrequire c.position.z > 5\n");
+  const Result never = Run({"test", impossible, "-I", Example(""), "--controller", "demo-reach",
+                            "-n", "2", "--max-attempts", "20"});
+  EXPECT_EQ(never.exit_code, 3) << never.err;
+  EXPECT_NE(never.err.find("impossible.prs:3:"), std::string::npos) << never.err;
   const Result missing = Run({"test", Path("none.prs"), "--controller", "demo-reach"});
   EXPECT_EQ(missing.exit_code, 1);
   EXPECT_NE(missing.err.find("none.prs"), std::string::npos) << missing.err;
