@@ -25,7 +25,7 @@ std::string Lowercase(std::string text) {
 Shape ReadShape(const ObjectFacts& facts, const std::string& label,
                 std::vector<std::string>& warnings) {
   if (facts.dimensions.minCoeff() <= 0) return Shape::kNone;
-  const lang::Value* value = Find(*facts.properties, "shape_type");
+  const lang::Value* value = Find(facts.properties, "shape_type");
   if (value == nullptr) return Shape::kBox;
   if (value->Is<lang::StringPtr>()) {
     const std::string shape = Lowercase(*value->As<lang::StringPtr>());
@@ -39,7 +39,7 @@ Shape ReadShape(const ObjectFacts& facts, const std::string& label,
 
 Rgba ReadColor(const ObjectFacts& facts, const std::string& label,
                std::vector<std::string>& warnings) {
-  const lang::Value* value = Find(*facts.properties, "color");
+  const lang::Value* value = Find(facts.properties, "color");
   if (value == nullptr) return Rgba{};
   if (auto color = ParseColor(*value)) return *color;
   warnings.push_back(fmt::format(
@@ -51,7 +51,7 @@ Rgba ReadColor(const ObjectFacts& facts, const std::string& label,
 // A positive number makes a free body; 0 or no `mass` a static one.
 double ReadMass(const ObjectFacts& facts, Shape shape, const std::string& label,
                 std::vector<std::string>& warnings) {
-  const lang::Value* value = Find(*facts.properties, "mass");
+  const lang::Value* value = Find(facts.properties, "mass");
   if (value == nullptr) return 0;
   if (!value->Is<double>() || value->As<double>() < 0) {
     warnings.push_back(

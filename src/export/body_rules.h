@@ -22,7 +22,7 @@ struct ObjectFacts {
   Eigen::Quaterniond R_WO = Eigen::Quaterniond::Identity();
   Eigen::Vector3d dimensions = Eigen::Vector3d::Zero();
   bool allow_collisions = false;
-  const Properties* properties = nullptr;  // not null
+  Properties properties;  // a copy: the scene's container type is not part of this contract
 };
 
 /// Makes unique identifier names; "world" and "ground" are reserved for the exporters.

@@ -49,6 +49,13 @@ std::optional<Format> ParseFormat(std::string_view name) {
 const char* FormatName(Format format) { return Info(format).name; }
 const char* FileExtension(Format format) { return Info(format).extension; }
 
+std::optional<Format> FormatFromExtension(std::string_view extension) {
+  for (const FormatInfo& info : kFormats) {
+    if (extension == info.extension) return info.format;
+  }
+  return std::nullopt;
+}
+
 std::string ListFormatNames() {
   std::string list;
   for (const FormatInfo& info : kFormats) list += (list.empty() ? "" : ", ") + std::string(info.name);
@@ -69,7 +76,7 @@ ExportScene MakeExportScene(const lang::Scene& scene, std::string title) {
     facts.R_WO = object.R_WO;
     facts.dimensions = object.dimensions;
     facts.allow_collisions = object.allow_collisions;
-    facts.properties = &object.properties;
+    for (const auto& [name, value] : object.properties) facts.properties.emplace_back(name, value);
     out.bodies.push_back(internal::MakeBody(facts, names, out.warnings));
   }
   return out;

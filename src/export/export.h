@@ -5,6 +5,7 @@
 
 #include <Eigen/Core>
 #include <Eigen/Geometry>
+#include <cstdint>
 #include <optional>
 #include <string>
 #include <string_view>
@@ -23,6 +24,8 @@ std::optional<Format> ParseFormat(std::string_view name);
 const char* FormatName(Format format);
 /// The file extension with its dot: ".xml" for MJCF, ".urdf", ".sdf", ".usda", ".gltf", ".glb".
 const char* FileExtension(Format format);
+/// The format whose FileExtension is `extension` (with its dot); nullopt if none.
+std::optional<Format> FormatFromExtension(std::string_view extension);
 /// Every format name, comma-separated, for messages.
 std::string ListFormatNames();
 
@@ -51,6 +54,7 @@ struct Body {
 /// A scene ready to be written; `title` names it inside the file ("seed 1 index 0").
 struct ExportScene {
   std::string title;
+  uint64_t seed = 0, index = 0;  // the scene's identity (spec §7), for file names
   std::vector<Body> bodies;
   /// Properties the rules could not read (an unknown colour name, a mass that is not a
   /// positive number), one sentence each naming the object; the body falls back to a default.

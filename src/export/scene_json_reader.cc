@@ -64,7 +64,6 @@ Body ReadBody(const json& object, int index, internal::NameTable& names,
   const json& name = Field(object, "name", where);
   const json& cls = Field(object, "class", where);
   if (!cls.is_string()) throw std::invalid_argument(where + ": \"class\" is not a string");
-  const internal::Properties properties = ReadProperties(object, where);
   internal::ObjectFacts facts;
   facts.name = name.is_string() ? name.get<std::string>() : "";
   facts.class_name = cls.get<std::string>();
@@ -77,7 +76,7 @@ Body ReadBody(const json& object, int index, internal::NameTable& names,
   facts.dimensions = ReadNumbers<3>(object, "dimensions", where);
   const json& allow = object.value("properties", json::object()).value("allowCollisions", json());
   facts.allow_collisions = allow.is_boolean() && allow.get<bool>();
-  facts.properties = &properties;
+  facts.properties = ReadProperties(object, where);
   return internal::MakeBody(facts, names, warnings);
 }
 
@@ -91,8 +90,11 @@ ExportScene ReadSceneJson(std::string_view line) {
   const json& objects = Field(scene, "objects", "the scene");
   if (!objects.is_array()) throw std::invalid_argument("\"objects\" is not an array");
   ExportScene out;
-  out.title = fmt::format("seed {} index {}", scene.value("seed", json()).dump(),
-                          scene.value("index", json()).dump());
+  const json seed = scene.value("seed", json());
+  const json index = scene.value("index", json());
+  out.title = fmt::format("seed {} index {}", seed.dump(), index.dump());
+  if (seed.is_number_unsigned()) out.seed = seed.get<uint64_t>();
+  if (index.is_number_unsigned()) out.index = index.get<uint64_t>();
   internal::NameTable names;
   for (size_t i = 0; i < objects.size(); ++i)
     out.bodies.push_back(ReadBody(objects[i], int(i), names, out.warnings));

@@ -11,17 +11,18 @@ namespace {
 
 std::string FormatTuple(const Eigen::Vector3d& v) { return "(" + FormatVector(v, ", ") + ")"; }
 
-std::string FormatSchemas(bool rigid_body, bool collides) {
+// The prim's metadata listing its physics schemas; `indent` is the prim's own indentation.
+std::string FormatSchemas(bool rigid_body, bool collides, const std::string& indent) {
   std::string schemas;
   if (rigid_body) schemas += "\"PhysicsRigidBodyAPI\", \"PhysicsMassAPI\"";
   if (collides) schemas += std::string(schemas.empty() ? "" : ", ") + "\"PhysicsCollisionAPI\"";
   if (schemas.empty()) return "";
-  return " (\n        prepend apiSchemas = [" + schemas + "]\n    )";
+  return " (\n" + indent + "    prepend apiSchemas = [" + schemas + "]\n" + indent + ")";
 }
 
 // The shape prim; a Cube of size 1 scaled to the box, or a Cylinder along local z.
 void AppendShape(const Body& body, std::string& out) {
-  const std::string schemas = FormatSchemas(false, body.collides);
+  const std::string schemas = FormatSchemas(false, body.collides, "        ");
   if (body.shape == Shape::kCylinder) {
     fmt::format_to(std::back_inserter(out),
                    "\n        def Cylinder \"shape\"{}\n        {{\n"
@@ -52,7 +53,7 @@ void AppendBody(const Body& body, std::string& out) {
                  "        quatd xformOp:orient = ({}, {}, {}, {})\n"
                  "        uniform token[] xformOpOrder = [\"xformOp:translate\", "
                  "\"xformOp:orient\"]\n",
-                 body.name, FormatSchemas(body.is_free(), false), body.class_name,
+                 body.name, FormatSchemas(body.is_free(), false, "    "), body.class_name,
                  FormatTuple(body.p_WO), FormatNumber(R.w()), FormatNumber(R.x()),
                  FormatNumber(R.y()), FormatNumber(R.z()));
   if (body.is_free()) {
