@@ -12,6 +12,8 @@ packages=(
   libcli11-dev           # the prs command line
   nlohmann-json3-dev     # scene JSON output and parsing
   clang libclang-rt-14-dev  # libFuzzer for the front-end fuzz target
+  libtinygltf-dev        # prs export: writes glTF; tests read it back
+  libmujoco-dev liburdfdom-dev libsdformat-dev  # prs export tests: each format read by its parser
 )
 
 missing=()

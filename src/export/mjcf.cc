@@ -4,6 +4,8 @@
 // needs a loaded model), and the elements used here are few.
 #include <fmt/format.h>
 
+#include <cmath>
+
 #include "export/writers.h"
 
 namespace prs::exporting::internal {
@@ -24,6 +26,10 @@ std::string FormatGeomType(const Body& body) {
   return fmt::format("type=\"box\" size=\"{}\"", FormatVector(body.size / 2));
 }
 
+// A MuJoCo camera looks along its -z with +y up; a scene's camera looks along its forward +y
+// with +z up. The quarter turn about x maps one onto the other.
+bool IsCamera(const Body& body) { return body.class_name == "Camera"; }
+
 void AppendBody(const Body& body, std::string& out) {
   fmt::format_to(std::back_inserter(out), "    <body name=\"{}\" pos=\"{}\" quat=\"{}\">\n",
                  body.name, FormatVector(body.p_WO), FormatQuaternion(body.R_WO));
@@ -37,6 +43,11 @@ void AppendBody(const Body& body, std::string& out) {
     fmt::format_to(std::back_inserter(out), "      <geom name=\"{}\" {} rgba=\"{}\"{}/>\n",
                    body.name, FormatGeomType(body), FormatRgba(body.color),
                    body.collides ? "" : " contype=\"0\" conaffinity=\"0\"");
+  }
+  if (IsCamera(body)) {
+    fmt::format_to(std::back_inserter(out),
+                   "      <camera name=\"{}\" quat=\"{} {} 0 0\" fovy=\"45\"/>\n", body.name,
+                   FormatNumber(std::sqrt(0.5)), FormatNumber(std::sqrt(0.5)));
   }
   out += "    </body>\n";
 }

@@ -172,6 +172,32 @@ TEST(MjcfTest, RestingObjectsStayPutForOneSecond) {
   RecordProperty("max_drift_mm", std::to_string(1000 * max_drift));
 }
 
+// A Camera object becomes a MuJoCo camera looking along the object's forward (+y) axis, upright.
+TEST(MjcfTest, CamerasLookWhereTheObjectFaces) {
+  const lang::Scene& scene = testing_scenes::SampleText(
+      "from model import *\n"
+      "down = Camera at V3D(0, 0, 2), facing V3D(0, 0, -1)\n"
+      "side = Camera at V3D(1, 0, 1), facing toward V3D(0, 0, 1)\n");
+  const ExportScene exported = MakeExportScene(scene, "t");
+  std::string error;
+  const ModelPtr model = LoadMjcf(WriteScene(exported, Format::kMjcf), error);
+  ASSERT_NE(model, nullptr) << error;
+  ASSERT_EQ(model->ncam, 2);
+  DataPtr data(mj_makeData(model.get()));
+  mj_forward(model.get(), data.get());
+  using RowMajor3d = Eigen::Matrix<double, 3, 3, Eigen::RowMajor>;
+  for (int i = 0; i < 2; ++i) {
+    const Body& body = exported.bodies[i];
+    // cam_xmat is row-major: column k is the camera's axis k in the world.
+    const Eigen::Map<const RowMajor3d> R_WC(data->cam_xmat + 9 * i);
+    EXPECT_TRUE(SameVector(-R_WC.col(2), body.R_WO * Eigen::Vector3d::UnitY())) << body.name;
+    EXPECT_TRUE(SameVector(R_WC.col(1), body.R_WO * Eigen::Vector3d::UnitZ())) << body.name;
+    if (body.name == "side") {  // looks at the origin's x from x = 1
+      EXPECT_TRUE(SameVector(-R_WC.col(2), Eigen::Vector3d(-1, 0, 0)));
+    }
+  }
+}
+
 TEST(MjcfTest, ObjectsInMidAirAreNotCountedAsResting) {
   const lang::Scene& scene = testing_scenes::SampleText(
       "from model import *\n"
