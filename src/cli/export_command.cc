@@ -6,7 +6,6 @@
 #include <filesystem>
 #include <fstream>
 #include <iostream>
-#include <limits>
 #include <mutex>
 #include <set>
 
@@ -26,8 +25,7 @@ struct ExportArgs {
   ScenarioArgs scenario;
   SamplingArgs sampling;
   std::string format;  // empty: from -o's extension
-  int64_t count = 1;
-  uint64_t start = 0;
+  SceneRangeArgs range;
   std::string output;  // a file (one scene), a directory, or empty for stdout
   bool quiet = false;
 };
@@ -67,8 +65,8 @@ int ExportSampledScenes(const ExportArgs& args, exporting::Format format,
   auto program = CompileScenario(args.scenario);
   if (!program) return kExitScenarioError;
   InterruptWatch interrupt;
-  sampling::BatchOptions options = MakeBatchOptions(args.sampling, args.count, interrupt.flag());
-  options.start = args.start;
+  sampling::BatchOptions options = MakeBatchOptions(args.sampling, args.range.count, interrupt.flag());
+  options.start = args.range.start;
   WarningSet warnings;
   int64_t written = 0;
   sampling::BatchCallbacks callbacks;
@@ -121,15 +119,11 @@ int ExportScenesFile(const ExportArgs& args, exporting::Format format,
 }
 
 int RunExport(const ExportArgs& args) {
-  if (args.start > std::numeric_limits<uint64_t>::max() - uint64_t(args.count - 1)) {
-    PrintError(fmt::format("--start {} with -n {} runs past the last scene index, 2^64 - 1",
-                           args.start, args.count));
-    return kExitUsage;
-  }
+  if (!CheckSceneRange(args.range)) return kExitUsage;
   const auto format = ChooseFormat(args.format, args.output);
   if (!format) return kExitUsage;
   if (!IsScenesFile(args.scenario.file)) {
-    const auto target = PlanExportTarget(args.output, *format, args.count,
+    const auto target = PlanExportTarget(args.output, *format, args.range.count,
                                          fs::path(args.scenario.file).stem().string());
     if (!target) return kExitUsage;
     return ExportSampledScenes(args, *format, *target);
@@ -155,14 +149,7 @@ CommandRunner ConfigureExportCommand(CLI::App& command) {
                   "mjcf, urdf, sdf, usda, gltf or glb (default: from -o's extension)")
       ->type_name("FORMAT")
       ->check(FormatNameValidator());
-  command.add_option("-n,--count", args->count, "number of scenes")
-      ->type_name("N")
-      ->check(IntegerAtLeast(1))
-      ->capture_default_str();
-  command.add_option("--start", args->start, "index of the first scene")
-      ->type_name("I")
-      ->check(UnsignedIntegerText())
-      ->capture_default_str();
+  AddSceneRangeOptions(command, args->range, 1);
   command
       .add_option("-o,--output", args->output,
                   "OUT.ext for one scene, or a directory for one file per scene (default: stdout "

@@ -5,6 +5,7 @@
 
 #include <Eigen/Core>
 #include <Eigen/Geometry>
+#include <algorithm>
 #include <cstdint>
 #include <optional>
 #include <string>
@@ -49,6 +50,8 @@ struct Body {
   bool collides = true;  // false for allowCollisions objects: visual geometry only
 
   bool is_free() const { return mass_kg > 0; }
+  /// A cylinder's radius: it fits the box the sampler placed.
+  double cylinder_radius() const { return std::min(size.x(), size.y()) / 2; }
 };
 
 /// A scene ready to be written; `title` names it inside the file ("seed 1 index 0").

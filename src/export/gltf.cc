@@ -120,7 +120,7 @@ int AddMaterial(tinygltf::Model& model, const Body& body) {
 
 int AddMesh(tinygltf::Model& model, const Body& body) {
   const MeshData data = body.shape == Shape::kCylinder
-                            ? MakeCylinderMesh(std::min(body.size.x(), body.size.y()) / 2,
+                            ? MakeCylinderMesh(body.cylinder_radius(),
                                                body.size.z())
                             : MakeBoxMesh(body.size);
   const size_t n = data.vertex_count();

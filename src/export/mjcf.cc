@@ -19,7 +19,7 @@ std::string FormatQuaternion(const Eigen::Quaterniond& R) {  // MuJoCo's order: 
 // MuJoCo sizes are half-extents; a cylinder's are radius and half-height.
 std::string FormatGeomType(const Body& body) {
   if (body.shape == Shape::kCylinder) {
-    const double radius = std::min(body.size.x(), body.size.y()) / 2;
+    const double radius = body.cylinder_radius();
     return fmt::format("type=\"cylinder\" size=\"{} {}\"", FormatNumber(radius),
                        FormatNumber(body.size.z() / 2));
   }

@@ -12,7 +12,7 @@ namespace {
 std::string FormatGeometry(const Body& body) {
   if (body.shape == Shape::kCylinder) {
     return fmt::format("<cylinder><radius>{}</radius><length>{}</length></cylinder>",
-                       FormatNumber(std::min(body.size.x(), body.size.y()) / 2),
+                       FormatNumber(body.cylinder_radius()),
                        FormatNumber(body.size.z()));
   }
   return fmt::format("<box><size>{}</size></box>", FormatVector(body.size));

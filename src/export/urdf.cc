@@ -11,7 +11,7 @@ namespace {
 std::string FormatGeometry(const Body& body) {
   if (body.shape == Shape::kCylinder) {
     return fmt::format("<cylinder radius=\"{}\" length=\"{}\"/>",
-                       FormatNumber(std::min(body.size.x(), body.size.y()) / 2),
+                       FormatNumber(body.cylinder_radius()),
                        FormatNumber(body.size.z()));
   }
   return fmt::format("<box size=\"{}\"/>", FormatVector(body.size));

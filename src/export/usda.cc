@@ -9,7 +9,9 @@
 namespace prs::exporting::internal {
 namespace {
 
-std::string FormatTuple(const Eigen::Vector3d& v) { return "(" + FormatVector(v, ", ") + ")"; }
+std::string FormatTuple(const Eigen::Vector3d& v) {
+  return fmt::format("({})", FormatVector(v, ", "));
+}
 
 // The prim's metadata listing its physics schemas; `indent` is the prim's own indentation.
 std::string FormatSchemas(bool rigid_body, bool collides, const std::string& indent) {
@@ -29,7 +31,7 @@ void AppendShape(const Body& body, std::string& out) {
                    "            uniform token axis = \"Z\"\n"
                    "            double height = {}\n            double radius = {}\n",
                    schemas, FormatNumber(body.size.z()),
-                   FormatNumber(std::min(body.size.x(), body.size.y()) / 2));
+                   FormatNumber(body.cylinder_radius()));
   } else {
     fmt::format_to(std::back_inserter(out),
                    "\n        def Cube \"shape\"{}\n        {{\n            double size = 1\n"

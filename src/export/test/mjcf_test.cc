@@ -98,7 +98,9 @@ void ExpectBodiesAsInScene(const mjModel& m, const ExportScene& scene, const std
     EXPECT_TRUE(SameRotation(Eigen::Quaterniond(q[0], q[1], q[2], q[3]), body.R_WO))
         << label << " " << body.name;
     EXPECT_EQ(m.body_jntnum[id], body.is_free() ? 1 : 0) << body.name;
-    if (body.is_free()) EXPECT_NEAR(m.body_mass[id], body.mass_kg, 1e-12) << body.name;
+    if (body.is_free()) {
+      EXPECT_NEAR(m.body_mass[id], body.mass_kg, 1e-12) << body.name;
+    }
     if (body.shape == Shape::kNone) continue;
     const int geom = mj_name2id(&m, mjOBJ_GEOM, body.name.c_str());
     ASSERT_GE(geom, 0) << body.name;

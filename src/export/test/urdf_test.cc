@@ -2,6 +2,7 @@
 // fixed or floating as the rules say, at the scene's exact pose, with its geometry, colour and
 // inertia.
 #include <gtest/gtest.h>
+#include <fmt/format.h>
 #include <urdf_parser/urdf_parser.h>
 
 #include "export/test/example_scenes.h"
@@ -79,7 +80,7 @@ TEST(UrdfTest, AnglesSurviveGimbalLockAndHalfTurns) {
   };
   for (const Eigen::Quaterniond& R : rotations) {
     Body body;
-    body.name = "b" + std::to_string(scene.bodies.size());
+    body.name = fmt::format("b{}", scene.bodies.size());
     body.R_WO = R;
     body.size = Eigen::Vector3d(0.1, 0.2, 0.3);
     scene.bodies.push_back(body);
