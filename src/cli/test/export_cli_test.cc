@@ -102,6 +102,13 @@ TEST_F(ExportTest, BadInputsAreLocated) {
   EXPECT_NE(compile.err.find(typo + ":2:5: error: unknown class 'Tabel'"), std::string::npos)
       << compile.err;
 
+  const std::string impossible =
+      Write("impossible.prs", "from model import *\nt = Table on floor\nrequire t.x > 5\n");
+  const Result failed = Run({"export", impossible, "-I", Example(""), "--format", "mjcf",
+                             "--max-attempts", "20"});
+  EXPECT_EQ(failed.exit_code, 3) << failed.err;
+  EXPECT_NE(failed.err.find("no valid scene after 20 attempts"), std::string::npos) << failed.err;
+
   const std::string unwritable = (dir_ / "no" / "such" / "dir" / "x.sdf").string();
   const Result write = Run({"export", Example("table_cube.prs"), "-o", unwritable});
   EXPECT_EQ(write.exit_code, 1);
