@@ -57,21 +57,24 @@ struct Body {
 /// A scene ready to be written; `title` names it inside the file ("seed 1 index 0").
 struct ExportScene {
   std::string title;
-  uint64_t seed = 0, index = 0;  // the scene's identity (spec §7), for file names
+  uint64_t seed = 0, index = 0;  // the scene's identity (spec §7): set by ReadSceneJson; by
+                                 // the caller after MakeExportScene
   std::vector<Body> bodies;
   /// Properties the rules could not read (an unknown colour name, a mass that is not a
   /// positive number), one sentence each naming the object; the body falls back to a default.
   std::vector<std::string> warnings;
 };
 
-/// Applies the export rules to a sampled scene.
+/// Applies the export rules (docs/export.md) to a sampled scene. Never throws for odd
+/// properties: it falls back to a default and adds a warning.
 ExportScene MakeExportScene(const lang::Scene& scene, std::string title);
 
 /// Reads one line of a scenes file (spec §8, "prs-scene/1") and applies the export rules.
 /// Throws std::invalid_argument with a message naming the missing or malformed field.
 ExportScene ReadSceneJson(std::string_view line);
 
-/// The scene in `format`: text for every format but kGlb, which is binary.
+/// The scene in `format`: text for every format but kGlb, which is binary. Throws
+/// std::runtime_error only if tinygltf cannot serialise a glTF model (not expected).
 std::string WriteScene(const ExportScene& scene, Format format);
 
 }  // namespace prs::exporting
