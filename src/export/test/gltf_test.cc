@@ -47,6 +47,39 @@ Eigen::Vector3d MeasureMeshHalfSize(const tinygltf::Model& model, int mesh) {
   return half;
 }
 
+// The values of an accessor (float VEC3 or uint32 SCALAR), read from its buffer view.
+template <typename T>
+std::vector<T> ReadAccessor(const tinygltf::Model& model, int index, int components) {
+  const tinygltf::Accessor& accessor = model.accessors[index];
+  const tinygltf::BufferView& view = model.bufferViews[accessor.bufferView];
+  std::vector<T> values(accessor.count * components);
+  std::memcpy(values.data(),
+              model.buffers[view.buffer].data.data() + view.byteOffset + accessor.byteOffset,
+              values.size() * sizeof(T));
+  return values;
+}
+
+// Every triangle winds counter-clockwise seen from outside (its normal agrees with its
+// vertices' normals), so viewers that cull back faces show the outside. A cylinder's side
+// triangles take the sum of their vertices' normals, which points outward too.
+void ExpectOutwardTriangles(const tinygltf::Model& model, int mesh, const std::string& name) {
+  const tinygltf::Primitive& primitive = model.meshes[mesh].primitives[0];
+  const auto p = ReadAccessor<float>(model, primitive.attributes.at("POSITION"), 3);
+  const auto n = ReadAccessor<float>(model, primitive.attributes.at("NORMAL"), 3);
+  const auto indices = ReadAccessor<uint32_t>(model, primitive.indices, 1);
+  auto vertex = [](const std::vector<float>& v, uint32_t i) {
+    return Eigen::Vector3d(v[3 * i], v[3 * i + 1], v[3 * i + 2]);
+  };
+  ASSERT_EQ(indices.size() % 3, 0u);
+  for (size_t t = 0; t < indices.size(); t += 3) {
+    const Eigen::Vector3d a = vertex(p, indices[t]), b = vertex(p, indices[t + 1]),
+                          c = vertex(p, indices[t + 2]);
+    const Eigen::Vector3d normal = vertex(n, indices[t]) + vertex(n, indices[t + 1]) +
+                                   vertex(n, indices[t + 2]);
+    EXPECT_GT((b - a).cross(c - a).dot(normal), 0) << name << " triangle " << t / 3;
+  }
+}
+
 void ExpectNodeAsInScene(const tinygltf::Model& model, const tinygltf::Node& node,
                          const Body& body, const std::string& label) {
   EXPECT_EQ(node.name, body.name);
@@ -60,6 +93,7 @@ void ExpectNodeAsInScene(const tinygltf::Model& model, const tinygltf::Node& nod
   EXPECT_EQ(node.extras.Get("static").Get<bool>(), !body.is_free());
   if (body.shape == Shape::kNone) return;
   ASSERT_GE(node.mesh, 0) << body.name;
+  ExpectOutwardTriangles(model, node.mesh, body.name);
   const Eigen::Vector3d half = MeasureMeshHalfSize(model, node.mesh);
   if (body.shape == Shape::kBox) {
     EXPECT_TRUE(SameVector(half, body.size / 2, 1e-6)) << body.name;
