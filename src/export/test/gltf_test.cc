@@ -30,23 +30,6 @@ tinygltf::Model Load(const std::string& data, bool binary) {
   return model;
 }
 
-// The bounding box of the mesh's vertices, read from the buffer (not from the accessor's own
-// min and max, which the writer also wrote).
-Eigen::Vector3d MeasureMeshHalfSize(const tinygltf::Model& model, int mesh) {
-  const tinygltf::Accessor& accessor =
-      model.accessors[model.meshes[mesh].primitives[0].attributes.at("POSITION")];
-  const tinygltf::BufferView& view = model.bufferViews[accessor.bufferView];
-  const unsigned char* bytes =
-      model.buffers[view.buffer].data.data() + view.byteOffset + accessor.byteOffset;
-  Eigen::Vector3d half = Eigen::Vector3d::Zero();
-  for (size_t i = 0; i < accessor.count * 3; ++i) {
-    float x;
-    std::memcpy(&x, bytes + 4 * i, 4);
-    half[i % 3] = std::max(half[i % 3], double(std::abs(x)));
-  }
-  return half;
-}
-
 // The values of an accessor (float VEC3 or uint32 SCALAR), read from its buffer view.
 template <typename T>
 std::vector<T> ReadAccessor(const tinygltf::Model& model, int index, int components) {
@@ -57,6 +40,16 @@ std::vector<T> ReadAccessor(const tinygltf::Model& model, int index, int compone
               model.buffers[view.buffer].data.data() + view.byteOffset + accessor.byteOffset,
               values.size() * sizeof(T));
   return values;
+}
+
+// The bounding box of the mesh's vertices, read from the buffer (not from the accessor's own
+// min and max, which the writer also wrote).
+Eigen::Vector3d MeasureMeshHalfSize(const tinygltf::Model& model, int mesh) {
+  const auto p =
+      ReadAccessor<float>(model, model.meshes[mesh].primitives[0].attributes.at("POSITION"), 3);
+  Eigen::Vector3d half = Eigen::Vector3d::Zero();
+  for (size_t i = 0; i < p.size(); ++i) half[i % 3] = std::max(half[i % 3], double(std::abs(p[i])));
+  return half;
 }
 
 // Every triangle winds counter-clockwise seen from outside (its normal agrees with its
