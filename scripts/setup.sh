@@ -12,9 +12,15 @@ packages=(
   libcli11-dev           # the prs command line
   nlohmann-json3-dev     # scene JSON output and parsing
   clang libclang-rt-14-dev  # libFuzzer for the front-end fuzz target
+  libmujoco-dev          # physics for the simulated case study (src/sim)
+  libcpp-httplib-dev     # prs view's local HTTP server
+  chromium               # prs view's end-to-end test (headless, driven by puppeteer-core)
   libtinygltf-dev        # prs export: writes glTF; tests read it back
-  libmujoco-dev liburdfdom-dev libsdformat-dev  # prs export tests: each format read by its parser
+  liburdfdom-dev libsdformat-dev  # prs export tests: URDF and SDF read by their own parsers
 )
+# prs view bundles three.js with npm at build time; keep a Node.js that is already installed
+# (e.g. NodeSource's, which ships its own npm) and otherwise take Debian's.
+command -v npm >/dev/null || packages+=(nodejs npm)
 
 missing=()
 for p in "${packages[@]}"; do

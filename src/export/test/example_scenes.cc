@@ -1,8 +1,6 @@
 // Samples the example scenarios once per test program, for every format test to check.
 #include "export/test/example_scenes.h"
 
-#include <unistd.h>
-
 #include <algorithm>
 #include <cstdlib>
 #include <filesystem>
@@ -101,12 +99,6 @@ const lang::Scene& SampleText(const std::string& text, uint64_t seed, uint64_t i
   if ((a - b).cwiseAbs().maxCoeff() <= tolerance) return ::testing::AssertionSuccess();
   return ::testing::AssertionFailure()
          << "(" << a.transpose() << ") vs (" << b.transpose() << ")";
-}
-
-std::string TempPath(const std::string& name) {
-  return (fs::temp_directory_path() /
-          ("prs_export_test_" + std::to_string(::getpid()) + "_" + name))
-      .string();
 }
 
 }  // namespace prs::exporting::testing_scenes

@@ -31,7 +31,4 @@ const lang::Scene& SampleText(const std::string& text, uint64_t seed = 1, uint64
 ::testing::AssertionResult SameVector(const Eigen::Vector3d& a, const Eigen::Vector3d& b,
                                       double tolerance = 1e-9);
 
-/// A temporary file path unique to this process and `name`.
-std::string TempPath(const std::string& name);
-
 }  // namespace prs::exporting::testing_scenes
