@@ -35,6 +35,9 @@ TEST_F(ExportTest, OneSceneGoesToAFileNamedByItsExtensionOrToStdout) {
       Run({"export", Example("table_cube.prs"), "-s", "5", "--start", "2", "--format", "urdf"});
   ASSERT_EQ(to_stdout.exit_code, 0) << to_stdout.err;
   EXPECT_EQ(to_stdout.out, ReadText(file));
+  const fs::path glb = dir_ / "scene.glb";
+  ASSERT_EQ(Run({"export", Example("table_cube.prs"), "-o", glb.string()}).exit_code, 0);
+  EXPECT_EQ(ReadText(glb).substr(0, 4), "glTF");  // the binary container's magic
 }
 
 TEST_F(ExportTest, FilesAreTheSameForAnyThreadCount) {
