@@ -65,7 +65,8 @@ int ExportSampledScenes(const ExportArgs& args, exporting::Format format,
   auto program = CompileScenario(args.scenario);
   if (!program) return kExitScenarioError;
   InterruptWatch interrupt;
-  sampling::BatchOptions options = MakeBatchOptions(args.sampling, args.range.count, interrupt.flag());
+  sampling::BatchOptions options =
+      MakeBatchOptions(args.sampling, args.range.count, interrupt.flag());
   options.start = args.range.start;
   WarningSet warnings;
   int64_t written = 0;

@@ -55,9 +55,10 @@ std::optional<exporting::Format> ChooseFormat(const std::string& format_name,
   if (!format_name.empty()) return exporting::ParseFormat(format_name);
   if (auto format = exporting::FormatFromExtension(fs::path(output).extension().string()))
     return format;
-  PrintError(fmt::format("no format: give --format ({}) or -o with a file extension "
-                         "(.xml, .urdf, .sdf, .usda, .gltf, .glb)",
-                         exporting::ListFormatNames()));
+  PrintError(
+      fmt::format("no format: give --format ({}) or -o with a file extension "
+                  "(.xml, .urdf, .sdf, .usda, .gltf, .glb)",
+                  exporting::ListFormatNames()));
   return std::nullopt;
 }
 
@@ -107,8 +108,8 @@ std::optional<ExportTarget> PlanExportTarget(const std::string& output, exportin
   const auto implied = exporting::FormatFromExtension(extension);
   std::string problem;
   if (output.empty() || output == "-") {
-    if (count > 1) problem = fmt::format("{} scenes make {} files: give a directory with -o DIR",
-                                         count, count);
+    if (count > 1)
+      problem = fmt::format("{} scenes make {} files: give a directory with -o DIR", count, count);
     else if (format == exporting::Format::kGlb && IsStdoutTerminal())
       problem = "glb is binary: give -o FILE.glb or redirect stdout";
     if (problem.empty()) return ExportTarget::Stdout();
@@ -116,8 +117,11 @@ std::optional<ExportTarget> PlanExportTarget(const std::string& output, exportin
     problem = fmt::format("-o {} has the extension of {}, but the format is {}", output,
                           exporting::FormatName(*implied), exporting::FormatName(format));
   } else if (implied) {
-    if (count > 1) problem = fmt::format("-o {} names one file, but {} scenes were asked for; "
-                                         "give a directory with -o DIR", output, count);
+    if (count > 1)
+      problem = fmt::format(
+          "-o {} names one file, but {} scenes were asked for; "
+          "give a directory with -o DIR",
+          output, count);
     if (problem.empty()) return ExportTarget::File(output);
   } else if (fs::exists(output) && !fs::is_directory(output)) {
     problem = fmt::format("-o {} exists and is not a directory", output);

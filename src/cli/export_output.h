@@ -27,8 +27,7 @@ class ExportTarget {
  public:
   static ExportTarget Stdout();
   static ExportTarget File(std::filesystem::path path);
-  static ExportTarget Directory(std::filesystem::path dir, std::string stem,
-                                std::string extension);
+  static ExportTarget Directory(std::filesystem::path dir, std::string stem, std::string extension);
 
   bool to_stdout() const { return kind_ == Kind::kStdout; }
   /// Writes one scene's file (creating the directory first). Throws std::runtime_error with
@@ -40,7 +39,10 @@ class ExportTarget {
  private:
   enum class Kind { kStdout, kFile, kDirectory };
   ExportTarget(Kind kind, std::filesystem::path path, std::string stem, std::string extension)
-      : kind_(kind), path_(std::move(path)), stem_(std::move(stem)), extension_(std::move(extension)) {}
+      : kind_(kind),
+        path_(std::move(path)),
+        stem_(std::move(stem)),
+        extension_(std::move(extension)) {}
   std::filesystem::path FileFor(uint64_t seed, uint64_t index) const;
 
   Kind kind_;

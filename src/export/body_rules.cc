@@ -32,8 +32,9 @@ Shape ReadShape(const ObjectFacts& facts, const std::string& label,
     if (shape == "cylinder") return Shape::kCylinder;
     if (shape == "box" || shape == "cube" || shape == "cuboid") return Shape::kBox;
   }
-  warnings.push_back(fmt::format("{}: shape_type {} is not \"box\" or \"cylinder\"; exported as a box",
-                                 label, lang::Repr(*value)));
+  warnings.push_back(
+      fmt::format("{}: shape_type {} is not \"box\" or \"cylinder\"; exported as a box", label,
+                  lang::Repr(*value)));
   return Shape::kBox;
 }
 
@@ -42,9 +43,9 @@ Rgba ReadColor(const ObjectFacts& facts, const std::string& label,
   const lang::Value* value = Find(facts.properties, "color");
   if (value == nullptr) return Rgba{};
   if (auto color = ParseColor(*value)) return *color;
-  warnings.push_back(fmt::format(
-      "{}: color {} is not a colour name, a grey level or an RGB triple; exported grey", label,
-      lang::Repr(*value)));
+  warnings.push_back(
+      fmt::format("{}: color {} is not a colour name, a grey level or an RGB triple; exported grey",
+                  label, lang::Repr(*value)));
   return Rgba{};
 }
 
@@ -54,14 +55,13 @@ double ReadMass(const ObjectFacts& facts, Shape shape, const std::string& label,
   const lang::Value* value = Find(facts.properties, "mass");
   if (value == nullptr) return 0;
   if (!value->Is<double>() || value->As<double>() < 0) {
-    warnings.push_back(
-        fmt::format("{}: mass {} is not a number >= 0 (kg); exported static", label,
-                    lang::Repr(*value)));
+    warnings.push_back(fmt::format("{}: mass {} is not a number >= 0 (kg); exported static", label,
+                                   lang::Repr(*value)));
     return 0;
   }
   if (shape == Shape::kNone && value->As<double>() > 0) {
-    warnings.push_back(fmt::format("{}: a point has no volume to carry its mass; exported static",
-                                   label));
+    warnings.push_back(
+        fmt::format("{}: a point has no volume to carry its mass; exported static", label));
     return 0;
   }
   return value->As<double>();
@@ -93,9 +93,8 @@ std::string NameTable::MakeUnique(const std::string& wanted) {
 
 Body MakeBody(const ObjectFacts& facts, NameTable& names, std::vector<std::string>& warnings) {
   Body body;
-  body.name = names.MakeUnique(facts.name.empty()
-                                   ? facts.class_name + "_" + std::to_string(facts.index)
-                                   : facts.name);
+  body.name = names.MakeUnique(
+      facts.name.empty() ? facts.class_name + "_" + std::to_string(facts.index) : facts.name);
   const std::string label = fmt::format("object {} ({})", body.name, facts.class_name);
   body.class_name = facts.class_name;
   body.p_WO = facts.p_WO;

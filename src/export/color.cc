@@ -19,16 +19,16 @@ struct NamedColor {
 
 // The CSS basic and common extended names, without spaces, lowercase.
 constexpr std::array<NamedColor, 30> kNamedColors = {{
-    {"black", 0x000000},     {"white", 0xffffff},     {"red", 0xff0000},
-    {"green", 0x008000},     {"blue", 0x0000ff},      {"yellow", 0xffff00},
-    {"cyan", 0x00ffff},      {"aqua", 0x00ffff},      {"magenta", 0xff00ff},
-    {"fuchsia", 0xff00ff},   {"orange", 0xffa500},    {"purple", 0x800080},
-    {"brown", 0x8b4513},     {"pink", 0xffc0cb},      {"grey", 0x808080},
-    {"gray", 0x808080},      {"lightgrey", 0xd3d3d3}, {"lightgray", 0xd3d3d3},
-    {"darkgrey", 0x404040},  {"darkgray", 0x404040},  {"silver", 0xc0c0c0},
-    {"navy", 0x000080},      {"olive", 0x808000},     {"teal", 0x008080},
-    {"maroon", 0x800000},    {"lime", 0x00ff00},      {"gold", 0xffd700},
-    {"beige", 0xf5f5dc},     {"violet", 0xee82ee},    {"darkgreen", 0x006400},
+    {"black", 0x000000},    {"white", 0xffffff},     {"red", 0xff0000},
+    {"green", 0x008000},    {"blue", 0x0000ff},      {"yellow", 0xffff00},
+    {"cyan", 0x00ffff},     {"aqua", 0x00ffff},      {"magenta", 0xff00ff},
+    {"fuchsia", 0xff00ff},  {"orange", 0xffa500},    {"purple", 0x800080},
+    {"brown", 0x8b4513},    {"pink", 0xffc0cb},      {"grey", 0x808080},
+    {"gray", 0x808080},     {"lightgrey", 0xd3d3d3}, {"lightgray", 0xd3d3d3},
+    {"darkgrey", 0x404040}, {"darkgray", 0x404040},  {"silver", 0xc0c0c0},
+    {"navy", 0x000080},     {"olive", 0x808000},     {"teal", 0x008080},
+    {"maroon", 0x800000},   {"lime", 0x00ff00},      {"gold", 0xffd700},
+    {"beige", 0xf5f5dc},    {"violet", 0xee82ee},    {"darkgreen", 0x006400},
 }};
 
 Rgba FromHex(unsigned rgb) {

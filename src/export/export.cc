@@ -4,9 +4,9 @@
 
 #include <fmt/format.h>
 
+#include <algorithm>
 #include <array>
 #include <cmath>
-#include <algorithm>
 
 #include "export/body_rules.h"
 #include "export/writers.h"
@@ -58,7 +58,8 @@ std::optional<Format> FormatFromExtension(std::string_view extension) {
 
 std::string ListFormatNames() {
   std::string list;
-  for (const FormatInfo& info : kFormats) list += (list.empty() ? "" : ", ") + std::string(info.name);
+  for (const FormatInfo& info : kFormats)
+    list += (list.empty() ? "" : ", ") + std::string(info.name);
   return list;
 }
 
@@ -84,12 +85,18 @@ ExportScene MakeExportScene(const lang::Scene& scene, std::string title) {
 
 std::string WriteScene(const ExportScene& scene, Format format) {
   switch (format) {
-    case Format::kMjcf: return internal::WriteMjcf(scene);
-    case Format::kUrdf: return internal::WriteUrdf(scene);
-    case Format::kSdf: return internal::WriteSdf(scene);
-    case Format::kUsda: return internal::WriteUsda(scene);
-    case Format::kGltf: return internal::WriteGltf(scene, /*binary=*/false);
-    case Format::kGlb: return internal::WriteGltf(scene, /*binary=*/true);
+    case Format::kMjcf:
+      return internal::WriteMjcf(scene);
+    case Format::kUrdf:
+      return internal::WriteUrdf(scene);
+    case Format::kSdf:
+      return internal::WriteSdf(scene);
+    case Format::kUsda:
+      return internal::WriteUsda(scene);
+    case Format::kGltf:
+      return internal::WriteGltf(scene, /*binary=*/false);
+    case Format::kGlb:
+      return internal::WriteGltf(scene, /*binary=*/true);
   }
   return {};
 }

@@ -40,8 +40,8 @@ enum class Shape {
 struct Body {
   std::string name;        // unique in the scene, an identifier: [A-Za-z_][A-Za-z0-9_]*
   std::string class_name;  // "Cube"
-  Eigen::Vector3d p_WO = Eigen::Vector3d::Zero();                 // metres
-  Eigen::Quaterniond R_WO = Eigen::Quaterniond::Identity();       // local to world, unit
+  Eigen::Vector3d p_WO = Eigen::Vector3d::Zero();            // metres
+  Eigen::Quaterniond R_WO = Eigen::Quaterniond::Identity();  // local to world, unit
   Eigen::Vector3d size = Eigen::Vector3d::Zero();  // width (x), length (y), height (z), metres
   Shape shape = Shape::kBox;
   Rgba color;

@@ -120,15 +120,14 @@ int AddMaterial(tinygltf::Model& model, const Body& body) {
 
 int AddMesh(tinygltf::Model& model, const Body& body) {
   const MeshData data = body.shape == Shape::kCylinder
-                            ? MakeCylinderMesh(body.cylinder_radius(),
-                                               body.size.z())
+                            ? MakeCylinderMesh(body.cylinder_radius(), body.size.z())
                             : MakeBoxMesh(body.size);
   const size_t n = data.vertex_count();
   tinygltf::Primitive primitive;
   primitive.mode = TINYGLTF_MODE_TRIANGLES;
-  const int position = AddAccessor(
-      model, AddBufferView(model, data.positions, TINYGLTF_TARGET_ARRAY_BUFFER),
-      TINYGLTF_COMPONENT_TYPE_FLOAT, TINYGLTF_TYPE_VEC3, n);
+  const int position =
+      AddAccessor(model, AddBufferView(model, data.positions, TINYGLTF_TARGET_ARRAY_BUFFER),
+                  TINYGLTF_COMPONENT_TYPE_FLOAT, TINYGLTF_TYPE_VEC3, n);
   // The spec requires bounds on positions: those of the float vertices themselves.
   std::vector<double> low(3, HUGE_VAL), high(3, -HUGE_VAL);
   for (size_t i = 0; i < data.positions.size(); ++i) {
@@ -138,12 +137,12 @@ int AddMesh(tinygltf::Model& model, const Body& body) {
   model.accessors[position].minValues = low;
   model.accessors[position].maxValues = high;
   primitive.attributes["POSITION"] = position;
-  primitive.attributes["NORMAL"] = AddAccessor(
-      model, AddBufferView(model, data.normals, TINYGLTF_TARGET_ARRAY_BUFFER),
-      TINYGLTF_COMPONENT_TYPE_FLOAT, TINYGLTF_TYPE_VEC3, n);
-  primitive.indices = AddAccessor(
-      model, AddBufferView(model, data.indices, TINYGLTF_TARGET_ELEMENT_ARRAY_BUFFER),
-      TINYGLTF_COMPONENT_TYPE_UNSIGNED_INT, TINYGLTF_TYPE_SCALAR, data.indices.size());
+  primitive.attributes["NORMAL"] =
+      AddAccessor(model, AddBufferView(model, data.normals, TINYGLTF_TARGET_ARRAY_BUFFER),
+                  TINYGLTF_COMPONENT_TYPE_FLOAT, TINYGLTF_TYPE_VEC3, n);
+  primitive.indices =
+      AddAccessor(model, AddBufferView(model, data.indices, TINYGLTF_TARGET_ELEMENT_ARRAY_BUFFER),
+                  TINYGLTF_COMPONENT_TYPE_UNSIGNED_INT, TINYGLTF_TYPE_SCALAR, data.indices.size());
   primitive.material = AddMaterial(model, body);
   tinygltf::Mesh mesh;
   mesh.name = body.name;

@@ -69,8 +69,8 @@ Body ReadBody(const json& object, int index, internal::NameTable& names,
   facts.class_name = cls.get<std::string>();
   facts.index = index;
   facts.p_WO = ReadNumbers<3>(object, "position", where);
-  const Eigen::Vector4d q = ReadNumbers<4>(Field(object, "orientation", where), "quaternion",
-                                           where + " orientation");
+  const Eigen::Vector4d q =
+      ReadNumbers<4>(Field(object, "orientation", where), "quaternion", where + " orientation");
   if (q.norm() < 1e-9) throw std::invalid_argument(where + ": the quaternion is zero");
   facts.R_WO = Eigen::Quaterniond(q[0], q[1], q[2], q[3]);
   facts.dimensions = ReadNumbers<3>(object, "dimensions", where);

@@ -12,8 +12,7 @@ namespace {
 std::string FormatGeometry(const Body& body) {
   if (body.shape == Shape::kCylinder) {
     return fmt::format("<cylinder><radius>{}</radius><length>{}</length></cylinder>",
-                       FormatNumber(body.cylinder_radius()),
-                       FormatNumber(body.size.z()));
+                       FormatNumber(body.cylinder_radius()), FormatNumber(body.size.z()));
   }
   return fmt::format("<box><size>{}</size></box>", FormatVector(body.size));
 }
@@ -58,9 +57,8 @@ void AppendModel(const Body& body, std::string& out) {
 }  // namespace
 
 std::string WriteSdf(const ExportScene& scene) {
-  const std::string plane = fmt::format(
-      "<plane><normal>0 0 1</normal><size>{0} {0}</size></plane>",
-      FormatNumber(2 * kGroundHalfWidth));
+  const std::string plane = fmt::format("<plane><normal>0 0 1</normal><size>{0} {0}</size></plane>",
+                                        FormatNumber(2 * kGroundHalfWidth));
   std::string out = fmt::format(
       "<?xml version=\"1.0\"?>\n"
       "<!-- ProbRobScene scene {0} -->\n"

@@ -11,8 +11,7 @@ namespace {
 std::string FormatGeometry(const Body& body) {
   if (body.shape == Shape::kCylinder) {
     return fmt::format("<cylinder radius=\"{}\" length=\"{}\"/>",
-                       FormatNumber(body.cylinder_radius()),
-                       FormatNumber(body.size.z()));
+                       FormatNumber(body.cylinder_radius()), FormatNumber(body.size.z()));
   }
   return fmt::format("<box size=\"{}\"/>", FormatVector(body.size));
 }
@@ -34,12 +33,12 @@ void AppendLink(const Body& body, std::string& out) {
   }
   if (body.is_free()) {
     const Eigen::Vector3d& I = body.inertia_diag;
-    fmt::format_to(std::back_inserter(out),
-                   "    <inertial>\n      <mass value=\"{}\"/>\n"
-                   "      <inertia ixx=\"{}\" ixy=\"0\" ixz=\"0\" iyy=\"{}\" iyz=\"0\" izz=\"{}\"/>\n"
-                   "    </inertial>\n",
-                   FormatNumber(body.mass_kg), FormatNumber(I.x()), FormatNumber(I.y()),
-                   FormatNumber(I.z()));
+    fmt::format_to(
+        std::back_inserter(out),
+        "    <inertial>\n      <mass value=\"{}\"/>\n"
+        "      <inertia ixx=\"{}\" ixy=\"0\" ixz=\"0\" iyy=\"{}\" iyz=\"0\" izz=\"{}\"/>\n"
+        "    </inertial>\n",
+        FormatNumber(body.mass_kg), FormatNumber(I.x()), FormatNumber(I.y()), FormatNumber(I.z()));
   }
   out += "  </link>\n";
 }
@@ -55,14 +54,15 @@ void AppendJoint(const std::string& child, const char* type, const Eigen::Vector
 
 void AppendGround(std::string& out) {
   const Eigen::Vector3d size(2 * kGroundHalfWidth, 2 * kGroundHalfWidth, kGroundThickness);
-  fmt::format_to(std::back_inserter(out),
-                 "  <link name=\"ground\">\n"
-                 "    <visual>\n      <geometry><box size=\"{0}\"/></geometry>\n"
-                 "      <material name=\"ground_color\"><color rgba=\"0.9 0.9 0.9 1\"/></material>\n"
-                 "    </visual>\n"
-                 "    <collision>\n      <geometry><box size=\"{0}\"/></geometry>\n"
-                 "    </collision>\n  </link>\n",
-                 FormatVector(size));
+  fmt::format_to(
+      std::back_inserter(out),
+      "  <link name=\"ground\">\n"
+      "    <visual>\n      <geometry><box size=\"{0}\"/></geometry>\n"
+      "      <material name=\"ground_color\"><color rgba=\"0.9 0.9 0.9 1\"/></material>\n"
+      "    </visual>\n"
+      "    <collision>\n      <geometry><box size=\"{0}\"/></geometry>\n"
+      "    </collision>\n  </link>\n",
+      FormatVector(size));
   AppendJoint("ground", "fixed", Eigen::Vector3d(0, 0, -kGroundThickness / 2),
               Eigen::Vector3d::Zero(), out);
 }

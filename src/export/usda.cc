@@ -30,8 +30,7 @@ void AppendShape(const Body& body, std::string& out) {
                    "\n        def Cylinder \"shape\"{}\n        {{\n"
                    "            uniform token axis = \"Z\"\n"
                    "            double height = {}\n            double radius = {}\n",
-                   schemas, FormatNumber(body.size.z()),
-                   FormatNumber(body.cylinder_radius()));
+                   schemas, FormatNumber(body.size.z()), FormatNumber(body.cylinder_radius()));
   } else {
     fmt::format_to(std::back_inserter(out),
                    "\n        def Cube \"shape\"{}\n        {{\n            double size = 1\n"
@@ -42,8 +41,8 @@ void AppendShape(const Body& body, std::string& out) {
   fmt::format_to(std::back_inserter(out),
                  "            color3f[] primvars:displayColor = [({}, {}, {})]\n"
                  "            float[] primvars:displayOpacity = [{}]\n        }}\n",
-                 FormatNumber(body.color.r), FormatNumber(body.color.g),
-                 FormatNumber(body.color.b), FormatNumber(body.color.a));
+                 FormatNumber(body.color.r), FormatNumber(body.color.g), FormatNumber(body.color.b),
+                 FormatNumber(body.color.a));
 }
 
 void AppendBody(const Body& body, std::string& out) {

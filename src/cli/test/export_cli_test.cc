@@ -1,6 +1,7 @@
 // End-to-end tests of `prs export`: one file per scene in a directory, one file or stdout for
 // one scene, the same files for any thread count and from a scenes file, and a located message
 // with the documented exit code for each bad command line or input.
+#include <fmt/format.h>
 #include <gtest/gtest.h>
 
 #include "cli/test/prs_runner.h"
@@ -17,7 +18,8 @@ TEST_F(ExportTest, WritesOneFilePerSceneIntoADirectory) {
   ASSERT_EQ(r.exit_code, 0) << r.err;
   EXPECT_NE(r.err.find("prs: wrote 3 files to"), std::string::npos) << r.err;
   std::vector<std::string> files;
-  for (const char* name : {"table_cube_s1_i0.xml", "table_cube_s1_i1.xml", "table_cube_s1_i2.xml"}) {
+  for (const char* name :
+       {"table_cube_s1_i0.xml", "table_cube_s1_i1.xml", "table_cube_s1_i2.xml"}) {
     files.push_back(ReadText(out / name));
     EXPECT_NE(files.back().find("<mujoco model=\"prs_scene\">"), std::string::npos) << name;
     EXPECT_NE(files.back().find("<freejoint name=\"Cube_5_free\"/>"), std::string::npos) << name;
@@ -55,8 +57,8 @@ TEST_F(ExportTest, FilesAreTheSameForAnyThreadCount) {
 
 TEST_F(ExportTest, AScenesFileExportsToTheSameFilesAsItsScenario) {
   const std::string scenes = (dir_ / "scenes.jsonl").string();
-  ASSERT_EQ(Run({"sample", Example("table_cube.prs"), "-n", "2", "-s", "4", "-o", scenes})
-                .exit_code, 0);
+  ASSERT_EQ(
+      Run({"sample", Example("table_cube.prs"), "-n", "2", "-s", "4", "-o", scenes}).exit_code, 0);
   for (const char* format : {"mjcf", "usda", "gltf"}) {
     const fs::path from_file = dir_ / (std::string("file_") + format);
     const fs::path direct = dir_ / (std::string("direct_") + format);
@@ -64,8 +66,10 @@ TEST_F(ExportTest, AScenesFileExportsToTheSameFilesAsItsScenario) {
     ASSERT_EQ(r.exit_code, 0) << r.err;
     ASSERT_EQ(Run({"export", Example("table_cube.prs"), "-n", "2", "-s", "4", "--format", format,
                    "-o", direct.string()})
-                  .exit_code, 0);
-    const std::string extension = std::string(format) == "mjcf" ? ".xml" : "." + std::string(format);
+                  .exit_code,
+              0);
+    const std::string extension =
+        std::string(format) == "mjcf" ? ".xml" : fmt::format(".{}", format);
     const std::string a = ReadText(from_file / ("scenes_s4_i1" + extension));
     const std::string b = ReadText(direct / ("table_cube_s4_i1" + extension));
     ASSERT_FALSE(a.empty()) << format;
@@ -94,7 +98,8 @@ TEST_F(ExportTest, BadCommandLinesAreUsageErrors) {
 }
 
 TEST_F(ExportTest, BadInputsAreLocated) {
-  const std::string scenes = Write("bad.jsonl", "\n{\"format\":\"prs-scene/1\",\"objects\":[]}\n{oops\n");
+  const std::string scenes =
+      Write("bad.jsonl", "\n{\"format\":\"prs-scene/1\",\"objects\":[]}\n{oops\n");
   const Result bad_line = Run({"export", scenes, "--format", "mjcf", "-o", (dir_ / "o").string()});
   EXPECT_EQ(bad_line.exit_code, 1);
   EXPECT_NE(bad_line.err.find("bad.jsonl:3: not valid JSON"), std::string::npos) << bad_line.err;
@@ -107,8 +112,8 @@ TEST_F(ExportTest, BadInputsAreLocated) {
 
   const std::string impossible =
       Write("impossible.prs", "from model import *\nt = Table on floor\nrequire t.x > 5\n");
-  const Result failed = Run({"export", impossible, "-I", Example(""), "--format", "mjcf",
-                             "--max-attempts", "20"});
+  const Result failed =
+      Run({"export", impossible, "-I", Example(""), "--format", "mjcf", "--max-attempts", "20"});
   EXPECT_EQ(failed.exit_code, 3) << failed.err;
   EXPECT_NE(failed.err.find("no valid scene after 20 attempts"), std::string::npos) << failed.err;
 
@@ -120,8 +125,8 @@ TEST_F(ExportTest, BadInputsAreLocated) {
 }
 
 TEST_F(ExportTest, UnreadablePropertiesAreWarnedAboutOnce) {
-  const std::string file = Write(
-      "bleu.prs", "from model import *\nCube at V3D(0, 0, 0.5), with color \"bleu\"\n");
+  const std::string file =
+      Write("bleu.prs", "from model import *\nCube at V3D(0, 0, 0.5), with color \"bleu\"\n");
   const Result r = Run({"export", file, "-I", Example(""), "-n", "3", "--format", "usda", "-o",
                         (dir_ / "usd").string()});
   EXPECT_EQ(r.exit_code, 0) << r.err;

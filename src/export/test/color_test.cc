@@ -1,7 +1,7 @@
 // Colour parsing: names, grey levels, triples as text and as values, and what is refused.
-#include <gtest/gtest.h>
-
 #include "export/color.h"
+
+#include <gtest/gtest.h>
 
 namespace prs::exporting {
 namespace {
@@ -45,10 +45,10 @@ TEST(ColorTest, ReadsValuesOfTheLanguage) {
   ExpectColor(ParseColor(lang::Value(Eigen::Vector3d(0, 0.5, 1))), 0, 0.5, 1);
   ExpectColor(ParseColor(lang::MakeTuple({lang::Value(1.0), lang::Value(0.0), lang::Value(0.0)})),
               1, 0, 0);
-  ExpectColor(ParseColor(lang::MakeList({lang::Value(0.0), lang::Value(1.0), lang::Value(0.0)})),
-              0, 1, 0);
-  EXPECT_FALSE(ParseColor(lang::MakeList({lang::Value(0.0), lang::MakeString("x"),
-                                          lang::Value(0.0)})));
+  ExpectColor(ParseColor(lang::MakeList({lang::Value(0.0), lang::Value(1.0), lang::Value(0.0)})), 0,
+              1, 0);
+  EXPECT_FALSE(
+      ParseColor(lang::MakeList({lang::Value(0.0), lang::MakeString("x"), lang::Value(0.0)})));
 }
 
 }  // namespace

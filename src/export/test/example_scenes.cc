@@ -90,15 +90,14 @@ const lang::Scene& SampleText(const std::string& text, uint64_t seed, uint64_t i
   const double angle = a.normalized().angularDistance(b.normalized());
   if (angle <= radians) return ::testing::AssertionSuccess();
   return ::testing::AssertionFailure()
-         << "rotations differ by " << angle << " rad: (" << a.coeffs().transpose()
-         << ") vs (" << b.coeffs().transpose() << ") [x y z w]";
+         << "rotations differ by " << angle << " rad: (" << a.coeffs().transpose() << ") vs ("
+         << b.coeffs().transpose() << ") [x y z w]";
 }
 
 ::testing::AssertionResult SameVector(const Eigen::Vector3d& a, const Eigen::Vector3d& b,
                                       double tolerance) {
   if ((a - b).cwiseAbs().maxCoeff() <= tolerance) return ::testing::AssertionSuccess();
-  return ::testing::AssertionFailure()
-         << "(" << a.transpose() << ") vs (" << b.transpose() << ")";
+  return ::testing::AssertionFailure() << "(" << a.transpose() << ") vs (" << b.transpose() << ")";
 }
 
 }  // namespace prs::exporting::testing_scenes

@@ -12,7 +12,7 @@
 namespace prs::exporting::testing_scenes {
 
 struct ExampleScene {
-  std::string label;  // "table_cube.prs seed 2 index 0", for failure messages
+  std::string label;                   // "table_cube.prs seed 2 index 0", for failure messages
   const lang::Scene* scene = nullptr;  // owned by the helper, alive for the whole test program
   ExportScene exported;
 };

@@ -67,14 +67,14 @@ void ExpectOutwardTriangles(const tinygltf::Model& model, int mesh, const std::s
   for (size_t t = 0; t < indices.size(); t += 3) {
     const Eigen::Vector3d a = vertex(p, indices[t]), b = vertex(p, indices[t + 1]),
                           c = vertex(p, indices[t + 2]);
-    const Eigen::Vector3d normal = vertex(n, indices[t]) + vertex(n, indices[t + 1]) +
-                                   vertex(n, indices[t + 2]);
+    const Eigen::Vector3d normal =
+        vertex(n, indices[t]) + vertex(n, indices[t + 1]) + vertex(n, indices[t + 2]);
     EXPECT_GT((b - a).cross(c - a).dot(normal), 0) << name << " triangle " << t / 3;
   }
 }
 
-void ExpectNodeAsInScene(const tinygltf::Model& model, const tinygltf::Node& node,
-                         const Body& body, const std::string& label) {
+void ExpectNodeAsInScene(const tinygltf::Model& model, const tinygltf::Node& node, const Body& body,
+                         const std::string& label) {
   EXPECT_EQ(node.name, body.name);
   ASSERT_EQ(node.translation.size(), 3u) << body.name;
   ASSERT_EQ(node.rotation.size(), 4u) << body.name;
@@ -96,8 +96,7 @@ void ExpectNodeAsInScene(const tinygltf::Model& model, const tinygltf::Node& nod
   }
   const int material = model.meshes[node.mesh].primitives[0].material;
   ASSERT_GE(material, 0);
-  EXPECT_DOUBLE_EQ(model.materials[material].pbrMetallicRoughness.baseColorFactor[0],
-                   body.color.r);
+  EXPECT_DOUBLE_EQ(model.materials[material].pbrMetallicRoughness.baseColorFactor[0], body.color.r);
 }
 
 void ExpectSceneAsSampled(const tinygltf::Model& model, const ExportScene& scene,

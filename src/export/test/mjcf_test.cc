@@ -98,8 +98,8 @@ void ExpectBodiesAsInScene(const mjModel& m, const ExportScene& scene, const std
     ASSERT_GE(geom, 0) << body.name;
     EXPECT_EQ(m.geom_type[geom], body.shape == Shape::kBox ? mjGEOM_BOX : mjGEOM_CYLINDER);
     if (body.shape == Shape::kBox) {
-      EXPECT_TRUE(SameVector(Eigen::Map<const Eigen::Vector3d>(m.geom_size + 3 * geom),
-                             body.size / 2));
+      EXPECT_TRUE(
+          SameVector(Eigen::Map<const Eigen::Vector3d>(m.geom_size + 3 * geom), body.size / 2));
     }
   }
 }
@@ -154,8 +154,8 @@ TEST(MjcfTest, RestingObjectsStayPutForOneSecond) {
     ASSERT_NE(model, nullptr) << example.label << ": " << error;
     DataPtr data = sim::MakeData(*model);
     ExpectNoInterpenetration(*model, *data, example.label);
-    max_drift = std::max(
-        max_drift, ExpectRestingBodiesStay(*model, *data, example.exported, example.label));
+    max_drift = std::max(max_drift,
+                         ExpectRestingBodiesStay(*model, *data, example.exported, example.label));
     for (const bool rests : FindRestingBodies(example.exported)) checked += rests;
   }
   // table_cube's cube and constructs' cups and gears, over several seeds.

@@ -36,7 +36,7 @@ TEST(RulesTest, TableCubeHasStaticFurnitureAndAFreeCube) {
     EXPECT_NEAR(cube.inertia_diag.x(), 0.1 * (2 * 0.05 * 0.05) / 12, 1e-15);
     EXPECT_EQ(cube.color.b, 1.0);
     EXPECT_EQ(cube.shape, Shape::kBox);
-    EXPECT_FALSE(FindByClass(scene, "Camera")->collides);  // allowCollisions: True
+    EXPECT_FALSE(FindByClass(scene, "Camera")->collides);         // allowCollisions: True
     EXPECT_DOUBLE_EQ(FindByClass(scene, "Table")->color.r, 0.5);  // color "0.5"
   }
 }
@@ -75,7 +75,8 @@ TEST(RulesTest, ShapeTypeMassAndColourForms) {
 TEST(RulesTest, UnreadablePropertiesWarnAndFallBack) {
   const lang::Scene& scene = SampleText(
       "from model import *\n"
-      "Cube at V3D(0, 0, 0.5), with color \"bleu\", with mass \"heavy\", with shape_type \"cone\"\n");
+      "Cube at V3D(0, 0, 0.5), with color \"bleu\", with mass \"heavy\", with shape_type "
+      "\"cone\"\n");
   const ExportScene exported = MakeExportScene(scene, "t");
   ASSERT_EQ(exported.bodies.size(), 1u);
   ASSERT_EQ(exported.warnings.size(), 3u);

@@ -52,12 +52,14 @@ TEST(SdfTest, LibsdformatReadsEveryExampleSceneAsSampled) {
   for (const auto& example : ExampleScenes()) {
     sdf::Root root;
     const sdf::Errors errors = root.LoadSdfString(WriteScene(example.exported, Format::kSdf));
-    for (const sdf::Error& error : errors) ADD_FAILURE() << example.label << ": " << error.Message();
+    for (const sdf::Error& error : errors)
+      ADD_FAILURE() << example.label << ": " << error.Message();
     ASSERT_EQ(root.WorldCount(), 1u) << example.label;
     const sdf::World& world = *root.WorldByIndex(0);
     EXPECT_EQ(world.ModelCount(), example.exported.bodies.size() + 1);  // + ground
     EXPECT_DOUBLE_EQ(world.Gravity().Z(), -9.81);
-    for (const Body& body : example.exported.bodies) ExpectModelAsInScene(world, body, example.label);
+    for (const Body& body : example.exported.bodies)
+      ExpectModelAsInScene(world, body, example.label);
   }
 }
 

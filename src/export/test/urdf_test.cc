@@ -1,8 +1,8 @@
 // URDF read back by urdfdom (the parser of ROS tools): one link per object hanging from "world",
 // fixed or floating as the rules say, at the scene's exact pose, with its geometry, colour and
 // inertia.
-#include <gtest/gtest.h>
 #include <fmt/format.h>
+#include <gtest/gtest.h>
 #include <urdf_parser/urdf_parser.h>
 
 #include "export/test/example_scenes.h"
@@ -64,7 +64,8 @@ TEST(UrdfTest, UrdfdomReadsEveryExampleSceneAsSampled) {
     ASSERT_NE(model, nullptr) << example.label;
     EXPECT_EQ(model->getRoot()->name, "world");
     EXPECT_EQ(model->links_.size(), example.exported.bodies.size() + 2);  // + world and ground
-    for (const Body& body : example.exported.bodies) ExpectLinkAsInScene(*model, body, example.label);
+    for (const Body& body : example.exported.bodies)
+      ExpectLinkAsInScene(*model, body, example.label);
   }
 }
 

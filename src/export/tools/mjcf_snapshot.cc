@@ -20,7 +20,8 @@ void MakeOffscreenContext() {
   EGLDisplay display =
       eglGetPlatformDisplay(EGL_PLATFORM_SURFACELESS_MESA, EGL_DEFAULT_DISPLAY, nullptr);
   const EGLint attributes[] = {EGL_SURFACE_TYPE, EGL_PBUFFER_BIT, EGL_RENDERABLE_TYPE,
-                               EGL_OPENGL_BIT, EGL_DEPTH_SIZE, 24, EGL_NONE};
+                               EGL_OPENGL_BIT,   EGL_DEPTH_SIZE,  24,
+                               EGL_NONE};
   EGLConfig config = nullptr;
   EGLint count = 0;
   if (!eglInitialize(display, nullptr, nullptr) ||
