@@ -15,6 +15,9 @@ packages=(
   libmujoco-dev          # physics for the simulated case study (src/sim)
   libcpp-httplib-dev     # prs view's local HTTP server
   chromium               # prs view's end-to-end test (headless, driven by puppeteer-core)
+  pybind11-dev python3-dev python3-numpy  # the Python package (python/)
+  python3-pip python3-setuptools python3-wheel  # pip install --no-build-isolation . (offline)
+  python3-pytest python3-matplotlib  # Python tests and the plotting example
   libtinygltf-dev        # prs export: writes glTF; tests read it back
   liburdfdom-dev libsdformat-dev  # prs export tests: URDF and SDF read by their own parsers
 )

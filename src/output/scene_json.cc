@@ -108,14 +108,6 @@ void AppendValue(const lang::Value& v, Out& out) {
   AppendString(lang::Repr(v), out);
 }
 
-// string_view comparisons check the length first, so most names are rejected without memcmp.
-bool IsCoreProperty(std::string_view name) {
-  using namespace std::literals;
-  return name == "position"sv || name == "orientation"sv || name == "width"sv ||
-         name == "length"sv || name == "height"sv || name == "yaw"sv || name == "pitch"sv ||
-         name == "roll"sv;
-}
-
 void AppendProperties(const lang::SceneObject& o, Out& out) {
   out += '{';
   bool first = true;
@@ -181,6 +173,14 @@ void AppendParams(const lang::Scene& scene, Out& out) {
 }
 
 }  // namespace
+
+// string_view comparisons check the length first, so most names are rejected without memcmp.
+bool IsCoreProperty(std::string_view name) {
+  using namespace std::literals;
+  return name == "position"sv || name == "orientation"sv || name == "width"sv ||
+         name == "length"sv || name == "height"sv || name == "yaw"sv || name == "pitch"sv ||
+         name == "roll"sv;
+}
 
 std::string FormatSceneJson(const sampling::SampledScene& sampled) {
   std::string out;
