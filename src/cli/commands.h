@@ -26,6 +26,7 @@ CommandRunner ConfigureSampleCommand(CLI::App& command);
 CommandRunner ConfigureCheckCommand(CLI::App& command);
 CommandRunner ConfigureStatsCommand(CLI::App& command);
 CommandRunner ConfigureViewCommand(CLI::App& command);
+CommandRunner ConfigureExportCommand(CLI::App& command);
 CommandRunner ConfigureTestCommand(CLI::App& command);
 
 }  // namespace prs::cli

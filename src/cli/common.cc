@@ -95,6 +95,27 @@ void AddScenarioOptions(CLI::App& command, ScenarioArgs& args) {
       ->allow_extra_args(false);
 }
 
+void AddSceneRangeOptions(CLI::App& command, SceneRangeArgs& args, int64_t min_count) {
+  command.add_option("-n,--count", args.count, "number of scenes")
+      ->type_name("N")
+      ->check(IntegerAtLeast(min_count))
+      ->capture_default_str();
+  command.add_option("--start", args.start, "index of the first scene")
+      ->type_name("I")
+      ->check(UnsignedIntegerText())
+      ->capture_default_str();
+}
+
+bool CheckSceneRange(const SceneRangeArgs& args) {
+  if (args.count == 0 ||
+      args.start <= std::numeric_limits<uint64_t>::max() - uint64_t(args.count - 1)) {
+    return true;
+  }
+  PrintError("--start " + std::to_string(args.start) + " with -n " + std::to_string(args.count) +
+             " runs past the last scene index, 2^64 - 1");
+  return false;
+}
+
 void AddSamplingOptions(CLI::App& command, SamplingArgs& args) {
   args.threads = CountHardwareThreads();
   command.add_option("-s,--seed", args.seed, "random seed")

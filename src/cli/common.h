@@ -45,6 +45,16 @@ void AddScenarioOptions(CLI::App& command, ScenarioArgs& args);
 /// Adds -s, --threads, --naive and --max-attempts to `command`.
 void AddSamplingOptions(CLI::App& command, SamplingArgs& args);
 
+/// Which scenes a command makes: -n N (at least `min_count`) and --start I.
+struct SceneRangeArgs {
+  int64_t count = 1;
+  uint64_t start = 0;
+};
+/// Adds -n/--count and --start to `command`.
+void AddSceneRangeOptions(CLI::App& command, SceneRangeArgs& args, int64_t min_count);
+/// Prints a usage error and returns false when the range runs past the last index, 2^64 - 1.
+bool CheckSceneRange(const SceneRangeArgs& args);
+
 /// Checks that an option's text is an integer in [min, max], with a message a user can act on.
 CLI::Validator IntegerInRange(int64_t min, int64_t max);
 CLI::Validator IntegerAtLeast(int64_t min);

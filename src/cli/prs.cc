@@ -20,6 +20,7 @@ const std::vector<Command>& CommandTable() {
        ConfigureCheckCommand},
       {"stats", "sample scenes and report acceptance, rejections and speed", ConfigureStatsCommand},
       {"view", "look at scenes in a local web viewer (or write one HTML file)", ConfigureViewCommand},
+      {"export", "write scenes as MJCF, URDF, SDF, USD or glTF files", ConfigureExportCommand},
       {"test", "run a controller in sampled scenes, tabulate outcomes", ConfigureTestCommand},
   };
   return kCommands;

@@ -4,7 +4,6 @@
 #include <fmt/format.h>
 
 #include <chrono>
-#include <limits>
 #include <memory>
 
 #include "cli/commands.h"
@@ -21,16 +20,10 @@ namespace {
 struct SampleArgs {
   ScenarioArgs scenario;
   SamplingArgs sampling;
-  int64_t count = 1;
-  uint64_t start = 0;
+  SceneRangeArgs range;
   std::string output;  // empty or "-": stdout
   bool quiet = false;
 };
-
-bool RunsPastLastIndex(const SampleArgs& args) {
-  return args.count > 0 &&
-         args.start > std::numeric_limits<uint64_t>::max() - uint64_t(args.count - 1);
-}
 
 std::unique_ptr<output::LineWriter> OpenOutput(const std::string& path) {
   if (path.empty() || path == "-") return std::make_unique<output::LineWriter>();
@@ -67,7 +60,7 @@ class SceneWriterRun {
       : program_(program),
         args_(args),
         writer_(writer),
-        progress_(args.count, ShouldShowProgress(args, writer)) {}
+        progress_(args.range.count, ShouldShowProgress(args, writer)) {}
 
   int Run() {
     const auto begin = std::chrono::steady_clock::now();
@@ -99,8 +92,8 @@ class SceneWriterRun {
     sampling::BatchOptions options;
     options.sample = MakeSampleOptions(args_.sampling);
     options.seed = args_.sampling.seed;
-    options.start = args_.start;
-    options.count = args_.count;
+    options.start = args_.range.start;
+    options.count = args_.range.count;
     options.threads = args_.sampling.threads;
     options.cancel = &interrupt_.flag();
     return options;
@@ -132,7 +125,7 @@ class SceneWriterRun {
   }
 
   std::string DescribeFailure() const {
-    const uint64_t failed = args_.start + uint64_t(done_);
+    const uint64_t failed = args_.range.start + uint64_t(done_);
     const std::string where = writer_.partial_path();
     if (done_ == 0) return fmt::format("scene {} failed; no scene was written", failed);
     if (done_ == 1)
@@ -146,7 +139,7 @@ class SceneWriterRun {
     if (FlushQuietly()) {
       PrintNote(fmt::format("interrupted; {} written to {} (resume with --start {} -n {})",
                             FormatCount(done_, "scene"), writer_.partial_path(),
-                            args_.start + uint64_t(done_), args_.count - done_));
+                            args_.range.start + uint64_t(done_), args_.range.count - done_));
     }
     return kExitInterruptedBase + interrupt_.signal_number();
   }
@@ -170,11 +163,7 @@ class SceneWriterRun {
 };
 
 int RunSample(const SampleArgs& args) {
-  if (RunsPastLastIndex(args)) {
-    PrintError(fmt::format("--start {} with -n {} runs past the last scene index, 2^64 - 1",
-                           args.start, args.count));
-    return kExitUsage;
-  }
+  if (!CheckSceneRange(args.range)) return kExitUsage;
   auto program = CompileScenario(args.scenario);
   if (!program) return kExitScenarioError;
   std::unique_ptr<output::LineWriter> writer;
@@ -192,21 +181,14 @@ int RunSample(const SampleArgs& args) {
 CommandRunner ConfigureSampleCommand(CLI::App& command) {
   auto args = std::make_shared<SampleArgs>();
   AddScenarioOptions(command, args->scenario);
-  CLI::Option* count = command.add_option("-n,--count", args->count, "number of scenes")
-                           ->type_name("N")
-                           ->check(IntegerAtLeast(0))
-                           ->capture_default_str();
-  CLI::Option* start = command.add_option("--start", args->start, "index of the first scene")
-                           ->type_name("I")
-                           ->check(UnsignedIntegerText())
-                           ->capture_default_str();
+  AddSceneRangeOptions(command, args->range, 0);
   // --index I: the one scene a `prs test` record names, short for `-n 1 --start I`.
-  command.add_option("--index", args->start, "only scene I (same as -n 1 --start I)")
+  command.add_option("--index", args->range.start, "only scene I (same as -n 1 --start I)")
       ->type_name("I")
       ->check(UnsignedIntegerText())
-      ->excludes(count)
-      ->excludes(start)
-      ->each([args](const std::string&) { args->count = 1; });
+      ->excludes(command.get_option("--count"))
+      ->excludes(command.get_option("--start"))
+      ->each([args](const std::string&) { args->range.count = 1; });
   command
       .add_option("-o,--output", args->output,
                   "write to OUT (via OUT.partial, renamed when complete) instead of stdout")

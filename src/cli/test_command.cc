@@ -6,7 +6,6 @@
 #include <algorithm>
 #include <filesystem>
 #include <iostream>
-#include <limits>
 #include <memory>
 #include <optional>
 
@@ -29,8 +28,7 @@ struct TestArgs {
   SamplingArgs sampling;
   std::string controller;
   std::string exec;
-  int64_t count = 100;
-  uint64_t start = 0;
+  SceneRangeArgs range{.count = 100, .start = 0};
   std::string output;  // empty: no records written
   double timeout_s = 60;
   std::string save_failures_dir;
@@ -82,8 +80,8 @@ harness::RunOptions MakeRunOptions(const TestArgs& args, const std::atomic<bool>
   harness::RunOptions options;
   options.sample = MakeSampleOptions(args.sampling);
   options.seed = args.sampling.seed;
-  options.start = args.start;
-  options.count = args.count;
+  options.start = args.range.start;
+  options.count = args.range.count;
   options.threads = args.sampling.threads;
   options.scenario_args = MakeScenarioArgs(args);
   options.save_failures_dir = args.save_failures_dir;
@@ -147,7 +145,7 @@ int ReportSavedFailures(const harness::RunSummary& summary, const TestArgs& args
 int RunAndReport(const lang::CompiledProgram& program, const harness::ControllerFactory& factory,
                  const TestArgs& args, output::LineWriter* records, InterruptWatch& interrupt) {
   harness::RunOptions options = MakeRunOptions(args, interrupt.flag());
-  ProgressBar progress(args.count, !args.quiet && IsStderrTerminal());
+  ProgressBar progress(args.range.count, !args.quiet && IsStderrTerminal());
   int64_t done = 0;
   options.on_record = [&](const harness::EpisodeRecord& record) {
     if (records) records->AddLine(harness::FormatRecordJson(record));
@@ -172,8 +170,8 @@ int RunAndReport(const lang::CompiledProgram& program, const harness::Controller
   } catch (const sampling::BatchCancelled&) {
     progress.Erase();
     PrintNote(fmt::format("interrupted after {} (resume with --start {} -n {})",
-                          FormatCount(done, "episode"), args.start + uint64_t(done),
-                          args.count - done));
+                          FormatCount(done, "episode"), args.range.start + uint64_t(done),
+                          args.range.count - done));
     return kExitInterruptedBase + interrupt.signal_number();
   } catch (const std::exception& error) {  // records or failing scenes cannot be written
     progress.Erase();
@@ -184,12 +182,7 @@ int RunAndReport(const lang::CompiledProgram& program, const harness::Controller
 
 // Checks that need no scenario, then compiles it, opens the outputs and runs.
 int RunTest(const TestArgs& args) {
-  if (args.count > 0 &&
-      args.start > std::numeric_limits<uint64_t>::max() - uint64_t(args.count - 1)) {
-    PrintError(fmt::format("--start {} with -n {} runs past the last scene index, 2^64 - 1",
-                           args.start, args.count));
-    return kExitUsage;
-  }
+  if (!CheckSceneRange(args.range)) return kExitUsage;
   InterruptWatch interrupt;
   const auto factory = ChooseController(args, interrupt.flag());
   if (!factory) return kExitUsage;
@@ -237,14 +230,7 @@ CommandRunner ConfigureTestCommand(CLI::App& command) {
                   "your own controller: a shell command run once per scene (docs/harness.md)")
       ->type_name("CMD")
       ->excludes(controller);
-  command.add_option("-n,--count", args->count, "number of episodes")
-      ->type_name("N")
-      ->check(IntegerAtLeast(0))
-      ->capture_default_str();
-  command.add_option("--start", args->start, "index of the first scene")
-      ->type_name("I")
-      ->check(UnsignedIntegerText())
-      ->capture_default_str();
+  AddSceneRangeOptions(command, args->range, 0);
   command.add_option("-o,--output", args->output, "write one JSON record per episode to OUT")
       ->type_name("OUT");
   command.add_option("--timeout", args->timeout_s, "seconds an --exec episode may take")

@@ -15,6 +15,12 @@ void StepWorld(const mjModel& model, mjData& data, const std::vector<ArmIndex>& 
   mj_step2(&model, &data);
 }
 
+void SetGripper(mjData& data, const ArmIndex& arm, double opening_m, bool now) {
+  data.ctrl[arm.gripper_actuator] = opening_m;
+  if (!now) return;
+  for (int address : arm.finger_qpos_address) data.qpos[address] = opening_m;
+}
+
 void SimulateFor(const mjModel& model, mjData& data, const std::vector<ArmIndex>& arms, double seconds) {
   const int steps = static_cast<int>(std::ceil(seconds / model.opt.timestep));
   for (int i = 0; i < steps; ++i) StepWorld(model, data, arms);

@@ -9,6 +9,10 @@
 
 namespace prs::sim {
 
+/// Sets the gripper servo's target: each finger's opening from closed, 0 to
+/// kPandaFingerTravel_m. With `now`, the fingers are also put there at once (for set-up).
+void SetGripper(mjData& data, const ArmIndex& arm, double opening_m, bool now = false);
+
 /// One physics step (model.opt.timestep seconds) with gravity compensation for `arms`.
 void StepWorld(const mjModel& model, mjData& data, const std::vector<ArmIndex>& arms);
 

@@ -3,7 +3,7 @@
 // are saved and regenerate, timeouts, and bad flags (exit 2) or scenarios (exit 1).
 #include <nlohmann/json.hpp>
 
-#include "cli/test/prs_test_fixture.h"
+#include "cli/test/prs_runner.h"
 #include "harness/test/process_checks.h"
 
 namespace prs::cli {

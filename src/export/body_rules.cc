@@ -1,0 +1,111 @@
+// The export rules (docs/export.md): names, shape from `shape_type`, colour from `color`, a free
+// body when `mass` is a positive number, inertia of a solid box or cylinder.
+#include "export/body_rules.h"
+
+#include <fmt/format.h>
+
+#include <algorithm>
+#include <cctype>
+
+namespace prs::exporting::internal {
+namespace {
+
+const lang::Value* Find(const Properties& properties, const std::string& name) {
+  for (const auto& [key, value] : properties) {
+    if (key == name) return &value;
+  }
+  return nullptr;
+}
+
+std::string Lowercase(std::string text) {
+  for (char& c : text) c = char(std::tolower(static_cast<unsigned char>(c)));
+  return text;
+}
+
+Shape ReadShape(const ObjectFacts& facts, const std::string& label,
+                std::vector<std::string>& warnings) {
+  if (facts.dimensions.minCoeff() <= 0) return Shape::kNone;
+  const lang::Value* value = Find(facts.properties, "shape_type");
+  if (value == nullptr) return Shape::kBox;
+  if (value->Is<lang::StringPtr>()) {
+    const std::string shape = Lowercase(*value->As<lang::StringPtr>());
+    if (shape == "cylinder") return Shape::kCylinder;
+    if (shape == "box" || shape == "cube" || shape == "cuboid") return Shape::kBox;
+  }
+  warnings.push_back(
+      fmt::format("{}: shape_type {} is not \"box\" or \"cylinder\"; exported as a box", label,
+                  lang::Repr(*value)));
+  return Shape::kBox;
+}
+
+Rgba ReadColor(const ObjectFacts& facts, const std::string& label,
+               std::vector<std::string>& warnings) {
+  const lang::Value* value = Find(facts.properties, "color");
+  if (value == nullptr) return Rgba{};
+  if (auto color = ParseColor(*value)) return *color;
+  warnings.push_back(
+      fmt::format("{}: color {} is not a colour name, a grey level or an RGB triple; exported grey",
+                  label, lang::Repr(*value)));
+  return Rgba{};
+}
+
+// A positive number makes a free body; 0 or no `mass` a static one.
+double ReadMass(const ObjectFacts& facts, Shape shape, const std::string& label,
+                std::vector<std::string>& warnings) {
+  const lang::Value* value = Find(facts.properties, "mass");
+  if (value == nullptr) return 0;
+  if (!value->Is<double>() || value->As<double>() < 0) {
+    warnings.push_back(fmt::format("{}: mass {} is not a number >= 0 (kg); exported static", label,
+                                   lang::Repr(*value)));
+    return 0;
+  }
+  if (shape == Shape::kNone && value->As<double>() > 0) {
+    warnings.push_back(
+        fmt::format("{}: a point has no volume to carry its mass; exported static", label));
+    return 0;
+  }
+  return value->As<double>();
+}
+
+// Principal moments of a solid box or cylinder about its centre, in its own axes.
+Eigen::Vector3d CalcInertiaDiag(Shape shape, const Eigen::Vector3d& size, double mass_kg) {
+  const double w = size.x(), l = size.y(), h = size.z();
+  if (shape == Shape::kCylinder) {
+    const double r = std::min(w, l) / 2;
+    const double across = mass_kg * (3 * r * r + h * h) / 12;
+    return {across, across, mass_kg * r * r / 2};
+  }
+  return {mass_kg * (l * l + h * h) / 12, mass_kg * (w * w + h * h) / 12,
+          mass_kg * (w * w + l * l) / 12};
+}
+
+}  // namespace
+
+std::string NameTable::MakeUnique(const std::string& wanted) {
+  std::string base;
+  for (const char c : wanted) base += std::isalnum(static_cast<unsigned char>(c)) ? c : '_';
+  if (base.empty() || std::isdigit(static_cast<unsigned char>(base[0]))) base = "_" + base;
+  std::string name = base;
+  for (int n = 2; taken_.count(name) > 0; ++n) name = base + "_" + std::to_string(n);
+  taken_.insert(name);
+  return name;
+}
+
+Body MakeBody(const ObjectFacts& facts, NameTable& names, std::vector<std::string>& warnings) {
+  Body body;
+  body.name = names.MakeUnique(
+      facts.name.empty() ? facts.class_name + "_" + std::to_string(facts.index) : facts.name);
+  const std::string label = fmt::format("object {} ({})", body.name, facts.class_name);
+  body.class_name = facts.class_name;
+  body.p_WO = facts.p_WO;
+  body.R_WO = facts.R_WO.normalized();
+  body.size = facts.dimensions;
+  body.shape = ReadShape(facts, label, warnings);
+  body.color = ReadColor(facts, label, warnings);
+  body.mass_kg = ReadMass(facts, body.shape, label, warnings);
+  body.inertia_diag = CalcInertiaDiag(body.shape, body.size, body.mass_kg);
+  body.collides = !facts.allow_collisions && body.shape != Shape::kNone;
+  return body;
+}
+
+}  // namespace prs::exporting::internal

@@ -1,0 +1,80 @@
+// Scene export for simulators and viewers: MJCF (MuJoCo), URDF (PyBullet, ROS), SDF (Gazebo),
+// USD text (Isaac Sim) and glTF 2.0. A scene is first reduced to format-neutral bodies, with the
+// rules of docs/export.md applied once (shape, colour, static or free, mass and inertia).
+#pragma once
+
+#include <Eigen/Core>
+#include <Eigen/Geometry>
+#include <algorithm>
+#include <cstdint>
+#include <optional>
+#include <string>
+#include <string_view>
+#include <vector>
+
+#include "export/color.h"
+#include "lang/scene.h"
+
+namespace prs::exporting {
+
+enum class Format { kMjcf, kUrdf, kSdf, kUsda, kGltf, kGlb };
+
+/// "mjcf", "urdf", "sdf", "usda", "gltf", "glb" (lowercase); nullopt for anything else.
+std::optional<Format> ParseFormat(std::string_view name);
+/// The format's name as ParseFormat reads it.
+const char* FormatName(Format format);
+/// The file extension with its dot: ".xml" for MJCF, ".urdf", ".sdf", ".usda", ".gltf", ".glb".
+const char* FileExtension(Format format);
+/// The format whose FileExtension is `extension` (with its dot); nullopt if none.
+std::optional<Format> FormatFromExtension(std::string_view extension);
+/// Every format name, comma-separated, for messages.
+std::string ListFormatNames();
+
+enum class Shape {
+  kBox,       // width x length x height, centred on the body's origin
+  kCylinder,  // axis along local z; radius min(width, length) / 2; length height
+  kNone,      // a point (some dimension is zero): a frame without geometry
+};
+
+/// One object as every exporter sees it.
+struct Body {
+  std::string name;        // unique in the scene, an identifier: [A-Za-z_][A-Za-z0-9_]*
+  std::string class_name;  // "Cube"
+  Eigen::Vector3d p_WO = Eigen::Vector3d::Zero();            // metres
+  Eigen::Quaterniond R_WO = Eigen::Quaterniond::Identity();  // local to world, unit
+  Eigen::Vector3d size = Eigen::Vector3d::Zero();  // width (x), length (y), height (z), metres
+  Shape shape = Shape::kBox;
+  Rgba color;
+  double mass_kg = 0;  // > 0: a free body; 0: static (fixed in the world)
+  Eigen::Vector3d inertia_diag = Eigen::Vector3d::Zero();  // kg m^2 about the centre, local axes
+  bool collides = true;  // false for allowCollisions objects: visual geometry only
+
+  bool is_free() const { return mass_kg > 0; }
+  /// A cylinder's radius: it fits the box the sampler placed.
+  double cylinder_radius() const { return std::min(size.x(), size.y()) / 2; }
+};
+
+/// A scene ready to be written; `title` names it inside the file ("seed 1 index 0").
+struct ExportScene {
+  std::string title;
+  uint64_t seed = 0, index = 0;  // the scene's identity (spec §7): set by ReadSceneJson; by
+                                 // the caller after MakeExportScene
+  std::vector<Body> bodies;
+  /// Properties the rules could not read (an unknown colour name, a mass that is not a
+  /// positive number), one sentence each naming the object; the body falls back to a default.
+  std::vector<std::string> warnings;
+};
+
+/// Applies the export rules (docs/export.md) to a sampled scene. Never throws for odd
+/// properties: it falls back to a default and adds a warning.
+ExportScene MakeExportScene(const lang::Scene& scene, std::string title);
+
+/// Reads one line of a scenes file (spec §8, "prs-scene/1") and applies the export rules.
+/// Throws std::invalid_argument with a message naming the missing or malformed field.
+ExportScene ReadSceneJson(std::string_view line);
+
+/// The scene in `format`: text for every format but kGlb, which is binary. Throws
+/// std::runtime_error only if tinygltf cannot serialise a glTF model (not expected).
+std::string WriteScene(const ExportScene& scene, Format format);
+
+}  // namespace prs::exporting

@@ -1,0 +1,104 @@
+// Reads scenes back from spec §8 JSON Lines, so that `prs export` can take a scenes file written
+// by `prs sample` as well as a scenario. Properties become language values and go through the
+// same rules as a sampled scene's.
+#include <fmt/format.h>
+
+#include <nlohmann/json.hpp>
+#include <stdexcept>
+
+#include "export/body_rules.h"
+#include "export/export.h"
+
+namespace prs::exporting {
+namespace {
+
+using nlohmann::json;
+
+lang::Value ToValue(const json& j) {
+  if (j.is_string()) return lang::MakeString(j.get<std::string>());
+  if (j.is_boolean()) return lang::Value(j.get<bool>());
+  if (j.is_number()) return lang::Value(j.get<double>());
+  if (j.is_array()) {
+    std::vector<lang::Value> elements;
+    for (const json& element : j) elements.push_back(ToValue(element));
+    return lang::MakeList(std::move(elements));
+  }
+  if (j.is_null()) return lang::Value();
+  return lang::MakeString(j.dump());
+}
+
+const json& Field(const json& object, const char* key, const std::string& where) {
+  if (!object.is_object() || !object.contains(key))
+    throw std::invalid_argument(fmt::format("{} has no \"{}\"", where, key));
+  return object.at(key);
+}
+
+template <int N>
+Eigen::Matrix<double, N, 1> ReadNumbers(const json& object, const char* key,
+                                        const std::string& where) {
+  const json& array = Field(object, key, where);
+  if (!array.is_array() || array.size() != N)
+    throw std::invalid_argument(fmt::format("{}: \"{}\" is not {} numbers", where, key, N));
+  Eigen::Matrix<double, N, 1> numbers;
+  for (int i = 0; i < N; ++i) {
+    if (!array[i].is_number())
+      throw std::invalid_argument(fmt::format("{}: \"{}\" is not {} numbers", where, key, N));
+    numbers[i] = array[i].get<double>();
+  }
+  return numbers;
+}
+
+internal::Properties ReadProperties(const json& object, const std::string& where) {
+  internal::Properties properties;
+  if (!object.contains("properties")) return properties;
+  const json& entries = object.at("properties");
+  if (!entries.is_object())
+    throw std::invalid_argument(where + ": \"properties\" is not an object");
+  for (const auto& [key, value] : entries.items()) properties.emplace_back(key, ToValue(value));
+  return properties;
+}
+
+Body ReadBody(const json& object, int index, internal::NameTable& names,
+              std::vector<std::string>& warnings) {
+  const std::string where = fmt::format("object {}", index);
+  const json& name = Field(object, "name", where);
+  const json& cls = Field(object, "class", where);
+  if (!cls.is_string()) throw std::invalid_argument(where + ": \"class\" is not a string");
+  internal::ObjectFacts facts;
+  facts.name = name.is_string() ? name.get<std::string>() : "";
+  facts.class_name = cls.get<std::string>();
+  facts.index = index;
+  facts.p_WO = ReadNumbers<3>(object, "position", where);
+  const Eigen::Vector4d q =
+      ReadNumbers<4>(Field(object, "orientation", where), "quaternion", where + " orientation");
+  if (q.norm() < 1e-9) throw std::invalid_argument(where + ": the quaternion is zero");
+  facts.R_WO = Eigen::Quaterniond(q[0], q[1], q[2], q[3]);
+  facts.dimensions = ReadNumbers<3>(object, "dimensions", where);
+  const json& allow = object.value("properties", json::object()).value("allowCollisions", json());
+  facts.allow_collisions = allow.is_boolean() && allow.get<bool>();
+  facts.properties = ReadProperties(object, where);
+  return internal::MakeBody(facts, names, warnings);
+}
+
+}  // namespace
+
+ExportScene ReadSceneJson(std::string_view line) {
+  const json scene = json::parse(line, nullptr, /*allow_exceptions=*/false);
+  if (scene.is_discarded()) throw std::invalid_argument("not valid JSON");
+  if (!scene.is_object() || scene.value("format", "") != "prs-scene/1")
+    throw std::invalid_argument("not a scene: \"format\" is not \"prs-scene/1\"");
+  const json& objects = Field(scene, "objects", "the scene");
+  if (!objects.is_array()) throw std::invalid_argument("\"objects\" is not an array");
+  ExportScene out;
+  const json seed = scene.value("seed", json());
+  const json index = scene.value("index", json());
+  out.title = fmt::format("seed {} index {}", seed.dump(), index.dump());
+  if (seed.is_number_unsigned()) out.seed = seed.get<uint64_t>();
+  if (index.is_number_unsigned()) out.index = index.get<uint64_t>();
+  internal::NameTable names;
+  for (size_t i = 0; i < objects.size(); ++i)
+    out.bodies.push_back(ReadBody(objects[i], int(i), names, out.warnings));
+  return out;
+}
+
+}  // namespace prs::exporting

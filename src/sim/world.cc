@@ -1,0 +1,111 @@
+// The simulated world from a scene (see world.h).
+#include "sim/world.h"
+
+#include "sim/control.h"
+
+#include <fmt/format.h>
+
+#include <stdexcept>
+
+namespace prs::sim {
+
+namespace {
+
+constexpr double kPi = 3.14159265358979323846;
+
+std::string FormatVector(const Eigen::Vector3d& v) { return fmt::format("{:.9g} {:.9g} {:.9g}", v.x(), v.y(), v.z()); }
+
+// Four static walls around the tray's top face, in the tray's frame.
+std::string WriteTrayWalls(const exporting::Body& tray) {
+  const Eigen::Quaterniond& R = tray.R_WO;
+  const double half_w = tray.size.x() / 2, half_l = tray.size.y() / 2, t = kTrayWallThickness_m;
+  const double z = tray.size.z() / 2 + kTrayWallHeight_m / 2;
+  const struct {
+    Eigen::Vector3d p_TW, half;
+  } walls[] = {
+      {{-(half_w + t / 2), 0, z}, {t / 2, half_l + t, kTrayWallHeight_m / 2}},
+      {{half_w + t / 2, 0, z}, {t / 2, half_l + t, kTrayWallHeight_m / 2}},
+      {{0, -(half_l + t / 2), z}, {half_w, t / 2, kTrayWallHeight_m / 2}},
+      {{0, half_l + t / 2, z}, {half_w, t / 2, kTrayWallHeight_m / 2}},
+  };
+  std::string xml = fmt::format(R"(<body name="{}_walls" pos="{}" quat="{} {} {} {}">)", tray.name,
+                                FormatVector(tray.p_WO), R.w(), R.x(), R.y(), R.z());
+  for (const auto& w : walls) {
+    xml += fmt::format(R"(<geom type="box" pos="{}" size="{}" rgba="0.45 0.45 0.45 1"/>)",
+                       FormatVector(w.p_TW), FormatVector(w.half));
+  }
+  return xml + "</body>";
+}
+
+void InsertBefore(std::string& xml, const std::string& marker, const std::string& text) {
+  const size_t at = xml.rfind(marker);
+  if (at == std::string::npos) throw std::logic_error("the exported MJCF has no " + marker);
+  xml.insert(at, text);
+}
+
+PandaNames ArmNames(const exporting::Body& robot) { return PandaNames{robot.name + "_"}; }
+
+}  // namespace
+
+std::vector<ArmIndex> World::arm_indices() const {
+  std::vector<ArmIndex> indices;
+  for (const WorldArm& arm : arms) indices.push_back(arm.index);
+  return indices;
+}
+
+int World::body(const std::string& name) const { return FindId(*model, mjOBJ_BODY, name); }
+
+const exporting::Body* World::FindFirst(const std::string& class_name) const {
+  for (const exporting::Body& b : scene.bodies) {
+    if (b.class_name == class_name) return &b;
+  }
+  return nullptr;
+}
+
+Eigen::Isometry3d CalcArmMount(const exporting::Body& robot) {
+  Eigen::Isometry3d X = Eigen::Isometry3d::Identity();
+  const Eigen::Matrix3d R_WO = robot.R_WO.toRotationMatrix();
+  X.translation() = robot.p_WO + R_WO.col(2) * (robot.size.z() / 2);
+  X.linear() = R_WO * Eigen::AngleAxisd(kPi / 2, Eigen::Vector3d::UnitZ()).toRotationMatrix();
+  return X;
+}
+
+std::string WriteWorldMjcf(const exporting::ExportScene& scene) {
+  std::string bodies, equalities, actuators;
+  for (const exporting::Body& b : scene.bodies) {
+    if (b.class_name == "Tray") bodies += WriteTrayWalls(b);
+    if (b.class_name != "Robot") continue;
+    const PandaNames names = ArmNames(b);
+    const Eigen::Isometry3d X = CalcArmMount(b);
+    bodies += WritePandaBody(names, X.translation(), Eigen::Quaterniond(X.linear()));
+    equalities += WritePandaEqualities(names);
+    actuators += WritePandaActuators(names);
+  }
+  std::string xml = exporting::WriteScene(scene, exporting::Format::kMjcf);
+  InsertBefore(xml, "</worldbody>", bodies);
+  // Offscreen buffers big enough for the camera images the controller renders.
+  InsertBefore(xml, "</mujoco>", "<visual><global offwidth=\"1280\" offheight=\"960\"/></visual>");
+  if (!equalities.empty()) InsertBefore(xml, "</mujoco>", "<equality>" + equalities + "</equality>");
+  if (!actuators.empty()) InsertBefore(xml, "</mujoco>", "<actuator>" + actuators + "</actuator>");
+  return xml;
+}
+
+World BuildWorld(exporting::ExportScene scene) {
+  World world;
+  world.xml = WriteWorldMjcf(scene);
+  world.model = LoadModelFromXml(world.xml);
+  world.data = MakeData(*world.model);
+  for (const exporting::Body& b : scene.bodies) {
+    if (b.class_name != "Robot") continue;
+    WorldArm arm{b.name, ArmNames(b), CalcArmMount(b), {}};
+    arm.index = FindArm(*world.model, arm.names);
+    SetArmJoints(*world.model, *world.data, arm.index, kPandaReadyPose_rad);
+    SetGripper(*world.data, arm.index, kPandaFingerTravel_m, /*now=*/true);
+    world.arms.push_back(std::move(arm));
+  }
+  world.scene = std::move(scene);
+  mj_forward(world.model.get(), world.data.get());
+  return world;
+}
+
+}  // namespace prs::sim

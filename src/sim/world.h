@@ -1,0 +1,52 @@
+// A simulated world from a sampled scene (issue 6): the scene's objects as exported for MuJoCo
+// (export/export.h: static fixtures, free bodies with mass, cameras), plus a Panda arm on every
+// Robot object and four walls around every Tray, so that "against a tray wall" is physical.
+#pragma once
+
+#include <string>
+#include <vector>
+
+#include "export/export.h"
+#include "sim/ik.h"
+
+namespace prs::sim {
+
+/// Tray walls stand on the tray's rim, outside its footprint (the sampler's `completely on`
+/// keeps objects inside the footprint, so walls never start inside an object).
+inline constexpr double kTrayWallThickness_m = 0.006;
+inline constexpr double kTrayWallHeight_m = 0.03;
+
+/// One Panda and the Robot object it stands on.
+struct WorldArm {
+  std::string robot_name;  // the scene object's (export) name
+  PandaNames names;
+  Eigen::Isometry3d X_WBase = Eigen::Isometry3d::Identity();
+  ArmIndex index;
+};
+
+struct World {
+  exporting::ExportScene scene;
+  ModelPtr model;
+  DataPtr data;
+  std::vector<WorldArm> arms;
+  std::string xml;  // the MJCF the model was compiled from, for debugging and --save-failures
+
+  std::vector<ArmIndex> arm_indices() const;
+  /// The body of the scene object `name` (export name). Throws std::out_of_range if none.
+  int body(const std::string& name) const;
+  /// The first scene object of a class (e.g. "Cube"), or nullptr.
+  const exporting::Body* FindFirst(const std::string& class_name) const;
+};
+
+/// X_WBase of the arm on a Robot object: on the object's top face, facing where the object
+/// faces (the arm's forward x along the object's forward y).
+Eigen::Isometry3d CalcArmMount(const exporting::Body& robot);
+
+/// The world's MJCF: export's MuJoCo document with the arms, tray walls and their actuators.
+std::string WriteWorldMjcf(const exporting::ExportScene& scene);
+
+/// Compiles the world and puts each arm in its ready pose. Throws std::runtime_error when
+/// MuJoCo rejects the model.
+World BuildWorld(exporting::ExportScene scene);
+
+}  // namespace prs::sim
