@@ -12,6 +12,9 @@ packages=(
   libcli11-dev           # the prs command line
   nlohmann-json3-dev     # scene JSON output and parsing
   clang libclang-rt-14-dev  # libFuzzer for the front-end fuzz target
+  libmujoco-dev libegl-dev libegl-mesa0 libgl1-mesa-dri  # prs render: MuJoCo's renderer on
+                         # EGL with Mesa's software rasteriser (llvmpipe), no GPU or display
+  libpng-dev             # prs render: PNG files
 )
 
 missing=()

@@ -25,5 +25,6 @@ const std::vector<Command>& CommandTable();
 CommandRunner ConfigureSampleCommand(CLI::App& command);
 CommandRunner ConfigureCheckCommand(CLI::App& command);
 CommandRunner ConfigureStatsCommand(CLI::App& command);
+CommandRunner ConfigureRenderCommand(CLI::App& command);
 
 }  // namespace prs::cli

@@ -19,6 +19,7 @@ const std::vector<Command>& CommandTable() {
       {"check", "compile a scenario and outline its objects, classes and randomness",
        ConfigureCheckCommand},
       {"stats", "sample scenes and report acceptance, rejections and speed", ConfigureStatsCommand},
+      {"render", "draw scenes as PNG pictures (offscreen, no display needed)", ConfigureRenderCommand},
   };
   return kCommands;
 }

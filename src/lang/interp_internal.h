@@ -121,6 +121,7 @@ class Interpreter {
   geometry::OrientedBox BoxOf(int index) const;
   std::string DescribeBox(int index) const;  // "c (0.05 x 0.05 x 0.05 m at (x, y, z))"
   const geometry::ConvexRegion* Workspace() const;
+  const RegionPtr* FindWorkspace() const;  // null when `workspace` is not a region
 
   // --- placement (placement.cc) ---
   Eigen::Vector3d PlacePosition(const ObjectPlan& plan, int index, SourceSpan span);

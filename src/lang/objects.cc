@@ -193,17 +193,24 @@ void Interpreter::CheckCollisions(int index) {
 }
 
 const geometry::ConvexRegion* Interpreter::Workspace() const {
+  const RegionPtr* workspace = FindWorkspace();
+  return workspace ? workspace->get() : nullptr;
+}
+
+const RegionPtr* Interpreter::FindWorkspace() const {
   const Env& env = module_envs_[current_module_];
   auto it = env.find("workspace");
   if (it == env.end() || !it->second.Is<RegionPtr>()) return nullptr;
-  return it->second.As<RegionPtr>().get();
+  return &it->second.As<RegionPtr>();
 }
 
 // Every object's whole box inside the workspace (spec §6), checked once the program has run.
 void Interpreter::CheckWorkspace() {
   current_module_ = program_.main_module;
-  const geometry::ConvexRegion* workspace = Workspace();
-  if (!workspace) return;
+  const RegionPtr* found = FindWorkspace();
+  if (!found) return;
+  scene_.workspace = *found;  // kept for drawing
+  const geometry::ConvexRegion* workspace = found->get();
   const RejectionKind kind = options_.mode == SamplingMode::kNaive ? RejectionKind::kContainment
                                                                    : RejectionKind::kWorkspace;
   for (int i = 0; i < static_cast<int>(scene_.objects.size()); ++i) {

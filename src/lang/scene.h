@@ -36,6 +36,8 @@ struct SceneObject {
 struct Scene {
   std::vector<SceneObject> objects;
   std::vector<std::pair<std::string, Value>> params;
+  /// The region the main module binds to `workspace` (null when none), e.g. for drawing.
+  RegionPtr workspace;
 };
 
 /// Why an attempt was rejected. Reasons are grouped by `kind` and `culprit` for accounting.
