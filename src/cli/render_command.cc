@@ -186,6 +186,7 @@ CLI::Validator CheckedBy(Parse parse) {
 CommandRunner ConfigureRenderCommand(CLI::App& command) {
   auto args = std::make_shared<RenderArgs>();
   AddScenarioOptions(command, args->scenario);
+  command.get_option("FILE")->description("the .prs scenario, or a scenes .jsonl (prs sample)");
   command.add_option("-n,--count", args->count, "number of scenes")
       ->type_name("N")
       ->check(IntegerAtLeast(1))

@@ -39,16 +39,17 @@ Image ComposeGrid(const std::vector<Image>& tiles) {
   if (tiles.empty()) throw std::invalid_argument("ComposeGrid: no tiles");
   const int tile_w = tiles[0].width, tile_h = tiles[0].height;
   const auto [columns, rows] = CalcGridShape(static_cast<int>(tiles.size()));
-  Image grid{columns * tile_w, rows * tile_h,
-             std::vector<uint8_t>(size_t(columns) * tile_w * rows * tile_h * 3, 255)};
+  const int step_x = tile_w + kGridGutter, step_y = tile_h + kGridGutter;
+  Image grid{columns * step_x - kGridGutter, rows * step_y - kGridGutter, {}};
+  grid.rgb.assign(size_t(grid.width) * grid.height * 3, 255);
   for (size_t t = 0; t < tiles.size(); ++t) {
     if (tiles[t].width != tile_w || tiles[t].height != tile_h)
       throw std::invalid_argument("ComposeGrid: tile " + std::to_string(t) + " is " +
                                   std::to_string(tiles[t].width) + "x" +
                                   std::to_string(tiles[t].height) + ", not " +
                                   std::to_string(tile_w) + "x" + std::to_string(tile_h));
-    const int x0 = static_cast<int>(t % columns) * tile_w;
-    const int y0 = static_cast<int>(t / columns) * tile_h;
+    const int x0 = static_cast<int>(t % columns) * step_x;
+    const int y0 = static_cast<int>(t / columns) * step_y;
     for (int y = 0; y < tile_h; ++y) {
       const uint8_t* from = &tiles[t].rgb[size_t(y) * tile_w * 3];
       std::copy(from, from + tile_w * 3, &grid.rgb[(size_t(y0 + y) * grid.width + x0) * 3]);

@@ -23,9 +23,9 @@ constexpr char kRenderModelXml[] = R"(<mujoco model="prs_render">
   <asset>
     <texture name="sky" type="skybox" builtin="gradient" rgb1="0.95 0.96 0.98"
              rgb2="0.66 0.73 0.82" width="64" height="64"/>
-    <texture name="checker" type="2d" builtin="checker" rgb1="0.88 0.88 0.86"
-             rgb2="0.76 0.76 0.74" width="64" height="64"/>
-    <material name="floor" texture="checker" texrepeat="2 2" texuniform="true"/>
+    <texture name="checker" type="2d" builtin="checker" rgb1="0.86 0.86 0.84"
+             rgb2="0.78 0.78 0.76" width="64" height="64"/>
+    <material name="floor" texture="checker" texrepeat="1 1" texuniform="true"/>
   </asset>
   <worldbody>
     <light name="sun" directional="true" castshadow="true" pos="0 0 10" dir="0.35 0.55 -1"

@@ -111,8 +111,12 @@ class Renderer {
 /// Columns and rows of a grid of `count` pictures: ceil(sqrt(count)) columns.
 std::pair<int, int> CalcGridShape(int count);
 
-/// Tiles of one size in row-major order on a grid of CalcGridShape(tiles.size()), empty cells
-/// white. Throws std::invalid_argument when the tiles differ in size or there are none.
+/// White pixels between the tiles of a grid.
+constexpr int kGridGutter = 4;
+
+/// Tiles of one size in row-major order on a grid of CalcGridShape(tiles.size()), kGridGutter
+/// white pixels apart, empty cells white: columns * (w + gutter) - gutter wide. Throws
+/// std::invalid_argument when the tiles differ in size or there are none.
 Image ComposeGrid(const std::vector<Image>& tiles);
 
 /// Writes an 8-bit RGB PNG. Throws std::runtime_error naming the path when it cannot.

@@ -1,83 +1,14 @@
 // End-to-end tests of the built `prs` binary: every exit code with its located message on
 // stderr, JSON Lines on stdout and in -o files, byte-identical output for any thread count
 // and any split of the index range, `prs check`'s outline, `prs stats --json`, and SIGTERM.
-#include <gtest/gtest.h>
-#include <sys/wait.h>
-#include <unistd.h>
-
-#include <cstdlib>
-#include <filesystem>
-#include <fstream>
 #include <nlohmann/json.hpp>
-#include <sstream>
-#include <string>
-#include <vector>
+
+#include "cli/test/prs_test_fixture.h"
 
 namespace prs::cli {
 namespace {
 
-namespace fs = std::filesystem;
 using nlohmann::json;
-
-fs::path RepoRoot() {
-  const char* dir = std::getenv("PRS_SOURCE_DIR");
-  return dir ? fs::path(dir) : fs::path(PRS_DEFAULT_SOURCE_DIR);
-}
-
-std::string Example(const std::string& name) { return (RepoRoot() / "examples" / name).string(); }
-
-std::string ReadText(const fs::path& path) {
-  std::ifstream in(path, std::ios::binary);
-  std::stringstream text;
-  text << in.rdbuf();
-  return text.str();
-}
-
-std::string Quote(const std::string& arg) {
-  std::string quoted = "'";
-  for (char c : arg) quoted += c == '\'' ? std::string("'\\''") : std::string(1, c);
-  return quoted + "'";
-}
-
-struct Result {
-  int exit_code = -1;
-  std::string out;
-  std::string err;
-};
-
-// A fresh directory per test, with the scenario files the test writes into it.
-class PrsTest : public testing::Test {
- protected:
-  void SetUp() override {
-    const auto* info = testing::UnitTest::GetInstance()->current_test_info();
-    dir_ = fs::temp_directory_path() /
-           ("prs_cli_test_" + std::string(info->name()) + "_" + std::to_string(::getpid()));
-    fs::remove_all(dir_);
-    fs::create_directories(dir_);
-  }
-  void TearDown() override { fs::remove_all(dir_); }
-
-  std::string Write(const std::string& name, const std::string& text) {
-    std::ofstream(dir_ / name, std::ios::binary) << text;
-    return (dir_ / name).string();
-  }
-
-  // Runs `prs ARGS...` through the shell, capturing stdout and stderr.
-  Result Run(const std::vector<std::string>& args) {
-    std::string command = Quote(PRS_BINARY);
-    for (const std::string& arg : args) command.append(" ").append(Quote(arg));
-    const fs::path out = dir_ / "stdout.txt", err = dir_ / "stderr.txt";
-    command.append(" >").append(Quote(out.string())).append(" 2>").append(Quote(err.string()));
-    const int status = std::system(command.c_str());
-    Result result;
-    result.exit_code = WIFEXITED(status) ? WEXITSTATUS(status) : -1;
-    result.out = ReadText(out);
-    result.err = ReadText(err);
-    return result;
-  }
-
-  fs::path dir_;
-};
 
 std::vector<std::string> SplitLines(const std::string& text) {
   std::vector<std::string> lines;

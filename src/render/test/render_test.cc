@@ -158,11 +158,13 @@ TEST(RenderTest, GridLaysTilesOutRowByRow) {
   std::vector<Image> tiles;
   for (int i = 0; i < 5; ++i) tiles.push_back(MakeSolidTile(20, 10, uint8_t(10 * i)));
   const Image grid = ComposeGrid(tiles);
-  EXPECT_EQ(grid.width, 60);
-  EXPECT_EQ(grid.height, 20);
-  EXPECT_EQ(PixelAt(grid, 45, 5)[0], 20);   // tile 2: first row, third column
-  EXPECT_EQ(PixelAt(grid, 25, 15)[0], 40);  // tile 4: second row, second column
-  EXPECT_EQ(PixelAt(grid, 55, 15)[0], 255); // the empty cell stays white
+  const int g = kGridGutter;
+  EXPECT_EQ(grid.width, 60 + 2 * g);
+  EXPECT_EQ(grid.height, 20 + g);
+  EXPECT_EQ(PixelAt(grid, 45 + 2 * g, 5)[0], 20);  // tile 2: first row, third column
+  EXPECT_EQ(PixelAt(grid, 25 + g, 15 + g)[0], 40);  // tile 4: second row, second column
+  EXPECT_EQ(PixelAt(grid, 20, 5)[0], 255);          // the gutter after tile 0
+  EXPECT_EQ(PixelAt(grid, 55 + 2 * g, 15 + g)[0], 255);  // the empty cell stays white
   tiles.push_back(MakeSolidTile(21, 10, 0));
   EXPECT_THROW(ComposeGrid(tiles), std::invalid_argument);
 }
