@@ -113,6 +113,17 @@ void AddSamplingOptions(CLI::App& command, SamplingArgs& args) {
       ->capture_default_str();
 }
 
+void AddSceneRangeOptions(CLI::App& command, int64_t& count, uint64_t& start, int64_t min_count) {
+  command.add_option("-n,--count", count, "number of scenes")
+      ->type_name("N")
+      ->check(IntegerAtLeast(min_count))
+      ->capture_default_str();
+  command.add_option("--start", start, "index of the first scene")
+      ->type_name("I")
+      ->check(UnsignedIntegerText())
+      ->capture_default_str();
+}
+
 int CountHardwareThreads() { return std::max(1u, std::thread::hardware_concurrency()); }
 
 std::unique_ptr<lang::CompiledProgram> CompileScenario(const ScenarioArgs& args) {

@@ -44,6 +44,8 @@ struct SamplingArgs {
 void AddScenarioOptions(CLI::App& command, ScenarioArgs& args);
 /// Adds -s, --threads, --naive and --max-attempts to `command`.
 void AddSamplingOptions(CLI::App& command, SamplingArgs& args);
+/// Adds -n (at least `min_count`) and --start: scenes start..start+count-1.
+void AddSceneRangeOptions(CLI::App& command, int64_t& count, uint64_t& start, int64_t min_count);
 
 /// Checks that an option's text is an integer in [min, max], with a message a user can act on.
 CLI::Validator IntegerInRange(int64_t min, int64_t max);

@@ -187,14 +187,7 @@ CommandRunner ConfigureRenderCommand(CLI::App& command) {
   auto args = std::make_shared<RenderArgs>();
   AddScenarioOptions(command, args->scenario);
   command.get_option("FILE")->description("the .prs scenario, or a scenes .jsonl (prs sample)");
-  command.add_option("-n,--count", args->count, "number of scenes")
-      ->type_name("N")
-      ->check(IntegerAtLeast(1))
-      ->capture_default_str();
-  command.add_option("--start", args->start, "index of the first scene")
-      ->type_name("I")
-      ->check(UnsignedIntegerText())
-      ->capture_default_str();
+  AddSceneRangeOptions(command, args->count, args->start, 1);
   command.add_option("-o,--output", args->output,
                      "PNG to write (several scenes without --grid: OUT_INDEX.png)")
       ->type_name("OUT")

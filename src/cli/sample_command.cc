@@ -192,14 +192,7 @@ int RunSample(const SampleArgs& args) {
 CommandRunner ConfigureSampleCommand(CLI::App& command) {
   auto args = std::make_shared<SampleArgs>();
   AddScenarioOptions(command, args->scenario);
-  command.add_option("-n,--count", args->count, "number of scenes")
-      ->type_name("N")
-      ->check(IntegerAtLeast(0))
-      ->capture_default_str();
-  command.add_option("--start", args->start, "index of the first scene")
-      ->type_name("I")
-      ->check(UnsignedIntegerText())
-      ->capture_default_str();
+  AddSceneRangeOptions(command, args->count, args->start, 0);
   command
       .add_option("-o,--output", args->output,
                   "write to OUT (via OUT.partial, renamed when complete) instead of stdout")

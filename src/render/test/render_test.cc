@@ -40,6 +40,12 @@ RenderObject MakeDownCamera() {
   return camera;
 }
 
+RenderScene MakeTableSceneWithCamera() {
+  RenderScene scene = MakeTableScene();
+  scene.objects.push_back(MakeDownCamera());
+  return scene;
+}
+
 Renderer& SharedRenderer() {
   static Renderer renderer;  // one EGL context for the whole test program
   return renderer;
@@ -67,6 +73,16 @@ bool IsRed(const std::array<int, 3>& rgb) {
   return rgb[0] > 120 && rgb[1] < 60 && rgb[2] < 60;
 }
 
+// The red cube's centre (top face at z = 0.6) is red in the picture, in its upper right
+// quadrant: views from above show world +x to the right and +y upwards.
+void ExpectCubeRedAndUpRight(const Image& image, const CameraPose& pose,
+                             const RenderOptions& options) {
+  const Eigen::Vector2d at = Project({0.6, 0.3, 0.6}, pose, options);
+  EXPECT_TRUE(IsRed(PixelAt(image, int(at.x()), int(at.y()))));
+  EXPECT_GT(at.x(), options.width / 2.0);
+  EXPECT_LT(at.y(), options.height / 2.0);
+}
+
 TEST(RenderTest, ImageHasTheRequestedSizeAndIsNotBlank) {
   RenderOptions options;
   options.width = 320;
@@ -89,26 +105,22 @@ TEST(RenderTest, RedCubeSeenFromTopAppearsAtItsProjectedCentre) {
   const RenderScene scene = MakeTableScene();
   const Image image = SharedRenderer().Render(scene, options);
   const CameraPose pose = CalcViewPose(scene, options);
-  const Eigen::Vector2d at = Project({0.6, 0.3, 0.6}, pose, options);
-  EXPECT_TRUE(IsRed(PixelAt(image, int(at.x()), int(at.y()))));
+  ExpectCubeRedAndUpRight(image, pose, options);
   // And nowhere near the opposite corner of the table.
   const Eigen::Vector2d away = Project({-0.6, -0.3, 0.5}, pose, options);
   EXPECT_FALSE(IsRed(PixelAt(image, int(away.x()), int(away.y()))));
-  // Top view: +x is to the right, +y is up in the picture.
-  EXPECT_GT(at.x(), options.width / 2.0);
-  EXPECT_LT(at.y(), options.height / 2.0);
 }
 
 TEST(RenderTest, CameraDepthAtTheCentreIsTheDistanceToTheSurfaceBelow) {
-  RenderScene scene = MakeTableScene();
-  scene.objects.push_back(MakeDownCamera());
+  const RenderScene scene = MakeTableSceneWithCamera();
   RenderOptions options;
   options.view = ParseView("camera:cam");
   DepthImage depth;
   const Image image = SharedRenderer().Render(scene, options, &depth);
   ASSERT_EQ(depth.width, options.width);
   ASSERT_EQ(depth.depth_m.size(), size_t(options.width) * options.height);
-  const float centre_m = depth.depth_m[size_t(options.height / 2) * options.width + options.width / 2];
+  const float centre_m =
+      depth.depth_m[size_t(options.height / 2) * options.width + options.width / 2];
   EXPECT_NEAR(centre_m, 2.0 - 0.5, 0.01);  // the table top
   // The cube's top (z = 0.6) where the cube's centre projects, and red there.
   const CameraPose pose = CalcViewPose(scene, options);
@@ -116,15 +128,12 @@ TEST(RenderTest, CameraDepthAtTheCentreIsTheDistanceToTheSurfaceBelow) {
   ASSERT_GT(at.x(), 0);
   ASSERT_LT(at.y(), options.height);
   EXPECT_NEAR(depth.depth_m[size_t(at.y()) * options.width + size_t(at.x())], 2.0 - 0.6, 0.01);
-  EXPECT_TRUE(IsRed(PixelAt(image, int(at.x()), int(at.y()))));
-  // The camera sees +x to the right and +y (its up axis) upwards: the cube is up and right.
-  EXPECT_GT(at.x(), options.width / 2.0);
-  EXPECT_LT(at.y(), options.height / 2.0);
+  // The camera sees +x to the right and +y (its up axis) upwards.
+  ExpectCubeRedAndUpRight(image, pose, options);
 }
 
 TEST(RenderTest, UnknownCameraNameListsTheCameras) {
-  RenderScene scene = MakeTableScene();
-  scene.objects.push_back(MakeDownCamera());
+  const RenderScene scene = MakeTableSceneWithCamera();
   RenderOptions options;
   options.view = ParseView("camera:nope");
   try {
