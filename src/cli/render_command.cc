@@ -40,8 +40,9 @@ std::vector<render::RenderScene> SampleScenes(const lang::CompiledProgram& progr
   sampling::BatchOptions options = MakeBatchOptions(args.sampling, args.count, never_cancel);
   options.start = args.start;
   std::vector<sampling::SampledScene> sampled;
-  sampling::SampleBatch(program, options,
-                        {nullptr, [&](sampling::BatchScene&& s) { sampled.push_back(std::move(s.sampled)); }});
+  sampling::SampleBatch(program, options, {nullptr, [&](sampling::BatchScene&& s) {
+                                             sampled.push_back(std::move(s.sampled));
+                                           }});
   // Converted after the workers stopped: the workspace region may be shared with them.
   std::vector<std::string> unknown_colors;
   std::vector<render::RenderScene> scenes;
@@ -68,14 +69,14 @@ std::vector<render::RenderScene> ReadScenesFile(const RenderArgs& args) {
     try {
       scenes.push_back(render::ParseRenderSceneJson(line));
     } catch (const std::invalid_argument& error) {
-      throw std::runtime_error(fmt::format("{}:{}: {}", args.scenario.file, line_number,
-                                           error.what()));
+      throw std::runtime_error(
+          fmt::format("{}:{}: {}", args.scenario.file, line_number, error.what()));
     }
     scenes.back().caption = fmt::format("scene {}", scene_index - 1);
   }
   if (scenes.empty())
-    throw std::runtime_error(fmt::format("{} has no scene at index {}", args.scenario.file,
-                                         args.start));
+    throw std::runtime_error(
+        fmt::format("{} has no scene at index {}", args.scenario.file, args.start));
   return scenes;
 }
 
@@ -96,7 +97,8 @@ int RenderScenes(const std::vector<render::RenderScene>& scenes, const RenderArg
     render::RenderScene scene = scenes[i];
     if (!args.grid) scene.caption.clear();
     render::DepthImage depth;
-    render::Image image = renderer.Render(scene, options, args.depth_output.empty() ? nullptr : &depth);
+    render::Image image =
+        renderer.Render(scene, options, args.depth_output.empty() ? nullptr : &depth);
     if (!args.depth_output.empty())
       render::WriteDepthPng(depth, NumberedPath(args.depth_output, args.start + i, numbered));
     if (args.grid) {
@@ -115,7 +117,6 @@ std::string CheckOptionCombinations(const RenderArgs& args, const render::View& 
     return "--depth needs a camera view (--view camera:NAME)";
   if (!args.depth_output.empty() && args.grid)
     return "--depth writes one depth image per scene and cannot be used with --grid";
-  if (args.count < 1) return "-n must be at least 1 to render";
   return "";
 }
 
@@ -158,11 +159,13 @@ int RunRender(const RenderArgs& args) {
   }
   const double seconds =
       std::chrono::duration<double>(std::chrono::steady_clock::now() - begin).count();
+  const bool numbered = scenes.size() > 1 && !args.grid;
+  const std::string where =
+      numbered ? NumberedPath(args.output, args.start, true) + " ..." : args.output;
   if (!args.quiet)
     PrintNote(fmt::format("rendered {} ({}x{}, {}) in {:.2f} s to {}",
                           FormatCount(int64_t(scenes.size()), "scene"), options.width,
-                          options.height, args.view, seconds,
-                          scenes.size() > 1 && !args.grid ? NumberedPath(args.output, args.start, true) + " ..." : args.output));
+                          options.height, args.view, seconds, where));
   return exit_code;
 }
 
@@ -188,8 +191,9 @@ CommandRunner ConfigureRenderCommand(CLI::App& command) {
   AddScenarioOptions(command, args->scenario);
   command.get_option("FILE")->description("the .prs scenario, or a scenes .jsonl (prs sample)");
   AddSceneRangeOptions(command, args->count, args->start, 1);
-  command.add_option("-o,--output", args->output,
-                     "PNG to write (several scenes without --grid: OUT_INDEX.png)")
+  command
+      .add_option("-o,--output", args->output,
+                  "PNG to write (several scenes without --grid: OUT_INDEX.png)")
       ->type_name("OUT")
       ->capture_default_str();
   command.add_option("--size", args->size, "picture size (per scene with --grid)")
@@ -201,8 +205,9 @@ CommandRunner ConfigureRenderCommand(CLI::App& command) {
       ->check(CheckedBy(render::ParseView))
       ->capture_default_str();
   command.add_flag("--grid", args->grid, "all scenes in one picture, in rows of ceil(sqrt(N))");
-  command.add_option("--depth", args->depth_output,
-                     "also write the camera's depth as a 16-bit PNG in millimetres")
+  command
+      .add_option("--depth", args->depth_output,
+                  "also write the camera's depth as a 16-bit PNG in millimetres")
       ->type_name("OUT");
   AddSamplingOptions(command, args->sampling);
   command.add_flag("-q,--quiet", args->quiet, "no summary on stderr");

@@ -61,9 +61,14 @@ EGLDisplay OpenDisplay() {
 }
 
 EGLConfig ChooseConfig(EGLDisplay display) {
-  const EGLint attributes[] = {EGL_SURFACE_TYPE, EGL_PBUFFER_BIT, EGL_RENDERABLE_TYPE,
-                               EGL_OPENGL_BIT, EGL_RED_SIZE, 8, EGL_GREEN_SIZE, 8,
-                               EGL_BLUE_SIZE, 8, EGL_DEPTH_SIZE, 24, EGL_NONE};
+  // Attribute, value pairs.
+  // clang-format off
+  const EGLint attributes[] = {
+      EGL_SURFACE_TYPE, EGL_PBUFFER_BIT,    // MuJoCo draws into its own framebuffer object
+      EGL_RENDERABLE_TYPE, EGL_OPENGL_BIT,  // desktop OpenGL, not GLES
+      EGL_RED_SIZE, 8, EGL_GREEN_SIZE, 8, EGL_BLUE_SIZE, 8, EGL_DEPTH_SIZE, 24,
+      EGL_NONE};
+  // clang-format on
   EGLConfig config = nullptr;
   EGLint count = 0;
   if (!eglChooseConfig(display, attributes, &config, 1, &count) || count < 1)

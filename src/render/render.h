@@ -100,8 +100,7 @@ class Renderer {
 
   /// Renders one scene. Fills `depth` (same size) when it is not null. Throws
   /// std::invalid_argument for an unknown camera name (see CalcViewPose).
-  Image Render(const RenderScene& scene, const RenderOptions& options,
-               DepthImage* depth = nullptr);
+  Image Render(const RenderScene& scene, const RenderOptions& options, DepthImage* depth = nullptr);
 
  private:
   struct State;

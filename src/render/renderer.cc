@@ -91,9 +91,8 @@ void PlaceCameraAndLights(mjvScene& scene, mjrContext& context, const CameraPose
     const Eigen::Vector3d dir_W(light.dir[0], light.dir[1], light.dir[2]);
     // MuJoCo clips the sun's shadow map to the camera's [near, far] as seen from the light.
     const double light_distance_m = pose.near_m + 1.5 * extent.radius_m;
-    const Eigen::Vector3d p_W = light.headlight
-                                    ? pose.p_WC
-                                    : extent.centre_W - light_distance_m * dir_W.normalized();
+    const Eigen::Vector3d p_W =
+        light.headlight ? pose.p_WC : extent.centre_W - light_distance_m * dir_W.normalized();
     for (int k = 0; k < 3; ++k) light.pos[k] = static_cast<float>(p_W[k]);
     if (light.headlight)
       for (int k = 0; k < 3; ++k) light.dir[k] = static_cast<float>(pose.forward_W[k]);
@@ -126,8 +125,7 @@ void LinearizeDepth(std::vector<float>& depth, const CameraPose& pose) {
 Renderer::Renderer() : state_(std::make_unique<State>()) {}
 Renderer::~Renderer() = default;
 
-Image Renderer::Render(const RenderScene& scene, const RenderOptions& options,
-                       DepthImage* depth) {
+Image Renderer::Render(const RenderScene& scene, const RenderOptions& options, DepthImage* depth) {
   const CameraPose pose = CalcViewPose(scene, options);  // may throw: check before drawing
   State& s = *state_;
   s.egl.MakeCurrent();

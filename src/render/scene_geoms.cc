@@ -32,8 +32,8 @@ void AddSolid(mjvScene& out, int type, const Eigen::Vector3d& size, const Eigen:
   geom.shininess = 0.3f;
 }
 
-void AddLine(mjvScene& out, const Eigen::Vector3d& a_W, const Eigen::Vector3d& b_W,
-             double width_m, const Rgba& rgba) {
+void AddLine(mjvScene& out, const Eigen::Vector3d& a_W, const Eigen::Vector3d& b_W, double width_m,
+             const Rgba& rgba) {
   mjvGeom& geom = NextGeom(out);
   mjv_initGeom(&geom, mjGEOM_CAPSULE, nullptr, nullptr, nullptr, rgba.data());
   mjv_makeConnector(&geom, mjGEOM_CAPSULE, width_m, a_W.x(), a_W.y(), a_W.z(), b_W.x(), b_W.y(),
@@ -145,7 +145,7 @@ void AddSceneGeoms(const RenderScene& scene, const RenderObject* viewpoint,
                    const SceneExtent& extent, int floor_texture, double fovy_deg,
                    const mjModel* model, mjvScene& out) {
   AddFloor(out, extent, floor_texture, model);
-  const double line_width = std::clamp(0.004 * extent.radius_m, 0.002, 0.02);
+  const double line_width = std::clamp(0.003 * extent.radius_m, 0.0015, 0.015);
   for (const RenderObject& o : scene.objects) {
     if (&o != viewpoint) AddObject(out, o, fovy_deg, line_width / 2);
   }

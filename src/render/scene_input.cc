@@ -2,10 +2,9 @@
 // classification of shapes (box, cylinder, point, camera) and one colour parser.
 #include "render/scene_input.h"
 
-#include <nlohmann/json.hpp>
-
 #include <algorithm>
 #include <cctype>
+#include <nlohmann/json.hpp>
 #include <optional>
 #include <stdexcept>
 

@@ -48,8 +48,9 @@ CameraPose FitCorners(const std::vector<Eigen::Vector3d>& corners, const Eigen::
   for (const auto& c : corners) {
     const Eigen::Vector3d q = c - centre_W;
     const double f = q.dot(forward_W);
-    distance = std::max(distance, std::max(std::abs(q.dot(right_W)) * 1.1 / tan_x,
-                                           std::abs(q.dot(up_W)) * 1.1 / tan_y) - f);
+    distance = std::max(
+        distance,
+        std::max(std::abs(q.dot(right_W)) * 1.1 / tan_x, std::abs(q.dot(up_W)) * 1.1 / tan_y) - f);
     reach = std::max(reach, q.norm());
   }
   distance = std::max(distance, 0.2);
@@ -62,11 +63,12 @@ CameraPose FitCorners(const std::vector<Eigen::Vector3d>& corners, const Eigen::
   return pose;
 }
 
-// Direction from the scene towards the viewer: in front (+y), turned towards +x by
-// `azimuth_deg`, raised by `elevation_deg`.
+// Direction from the scene towards the viewer: behind it (-y), turned towards +x by
+// `azimuth_deg`, raised by `elevation_deg`. Looking along +y (the scene's "ahead") keeps the
+// language's left and right (-x, +x) on the left and right of the picture.
 Eigen::Vector3d ViewerDirection(double azimuth_deg, double elevation_deg) {
   const double az = azimuth_deg * kPi / 180, el = elevation_deg * kPi / 180;
-  return {std::cos(el) * std::sin(az), std::cos(el) * std::cos(az), std::sin(el)};
+  return {std::cos(el) * std::sin(az), -std::cos(el) * std::cos(az), std::sin(el)};
 }
 
 std::string ListCameras(const RenderScene& scene) {
@@ -102,8 +104,8 @@ const RenderObject& FindViewpointObject(const RenderScene& scene, const std::str
     }
   }
   if (class_matches == 1) return *by_class;
-  throw std::invalid_argument("no object named '" + name + "' to look from (" +
-                              ListCameras(scene) + ")");
+  throw std::invalid_argument("no object named '" + name + "' to look from (" + ListCameras(scene) +
+                              ")");
 }
 
 View ParseView(const std::string& text) {
@@ -130,8 +132,8 @@ std::pair<int, int> ParseSize(const std::string& text) {
   }
   if (!ok) throw std::invalid_argument("expects WIDTHxHEIGHT such as 640x480, got '" + text + "'");
   if (width < 16 || height < 16 || width > 8192 || height > 8192)
-    throw std::invalid_argument("width and height must be from 16 to 8192 pixels, got '" +
-                                text + "'");
+    throw std::invalid_argument("width and height must be from 16 to 8192 pixels, got '" + text +
+                                "'");
   return {width, height};
 }
 

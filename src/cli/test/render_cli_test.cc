@@ -28,12 +28,12 @@ PngHeader ReadPngHeader(const fs::path& path) {
   return header;
 }
 
-class RenderTest : public PrsTest {
+class RenderCommandTest : public PrsTest {
  protected:
   std::string Out(const std::string& name) const { return (dir_ / name).string(); }
 };
 
-TEST_F(RenderTest, WritesAPngOfTheRequestedSize) {
+TEST_F(RenderCommandTest, WritesAPngOfTheRequestedSize) {
   const Result r =
       Run({"render", Example("table_cube.prs"), "--size", "320x240", "-o", Out("a.png")});
   ASSERT_EQ(r.exit_code, 0) << r.err;
@@ -43,16 +43,16 @@ TEST_F(RenderTest, WritesAPngOfTheRequestedSize) {
   EXPECT_NE(r.err.find("rendered 1 scene (320x240, overview)"), std::string::npos) << r.err;
 }
 
-TEST_F(RenderTest, GridHoldsAllScenesAndSeveralScenesGetNumberedFiles) {
-  ASSERT_EQ(Run({"render", Example("table_cube.prs"), "-n", "5", "--grid", "--size", "100x80",
-                 "-o", Out("grid.png")})
+TEST_F(RenderCommandTest, GridHoldsAllScenesAndSeveralScenesGetNumberedFiles) {
+  ASSERT_EQ(Run({"render", Example("table_cube.prs"), "-n", "5", "--grid", "--size", "100x80", "-o",
+                 Out("grid.png")})
                 .exit_code,
             0);
   const PngHeader grid = ReadPngHeader(Out("grid.png"));
   EXPECT_EQ(grid.width, 3u * 100 + 2 * 4);  // 3 columns, 4-pixel gutters
   EXPECT_EQ(grid.height, 2u * 80 + 4);
-  ASSERT_EQ(Run({"render", Example("table_cube.prs"), "-n", "2", "--start", "7", "--size",
-                 "64x48", "-o", Out("one.png")})
+  ASSERT_EQ(Run({"render", Example("table_cube.prs"), "-n", "2", "--start", "7", "--size", "64x48",
+                 "-o", Out("one.png")})
                 .exit_code,
             0);
   EXPECT_TRUE(fs::exists(Out("one_7.png")));
@@ -60,7 +60,7 @@ TEST_F(RenderTest, GridHoldsAllScenesAndSeveralScenesGetNumberedFiles) {
   EXPECT_FALSE(fs::exists(Out("one.png")));
 }
 
-TEST_F(RenderTest, CameraViewWritesSixteenBitDepth) {
+TEST_F(RenderCommandTest, CameraViewWritesSixteenBitDepth) {
   const Result r = Run({"render", Example("table_cube.prs"), "--view", "camera:Camera", "-o",
                         Out("rgb.png"), "--depth", Out("depth.png"), "--size", "160x120"});
   ASSERT_EQ(r.exit_code, 0) << r.err;
@@ -70,7 +70,7 @@ TEST_F(RenderTest, CameraViewWritesSixteenBitDepth) {
   EXPECT_EQ(depth.bit_depth, 16);
 }
 
-TEST_F(RenderTest, RendersAScenesFile) {
+TEST_F(RenderCommandTest, RendersAScenesFile) {
   const std::string scenes = Out("scenes.jsonl");
   ASSERT_EQ(Run({"sample", Example("table_cube.prs"), "-n", "3", "-o", scenes}).exit_code, 0);
   const Result r = Run({"render", scenes, "--start", "2", "--size", "64x48", "-o", Out("s.png")});
@@ -82,7 +82,7 @@ TEST_F(RenderTest, RendersAScenesFile) {
   EXPECT_NE(broken.err.find(bad + ":1: not valid JSON"), std::string::npos) << broken.err;
 }
 
-TEST_F(RenderTest, BadViewAndSizeAreLocatedUsageErrors) {
+TEST_F(RenderCommandTest, BadViewAndSizeAreLocatedUsageErrors) {
   const std::string file = Example("table_cube.prs");
   const Result view = Run({"render", file, "--view", "side"});
   EXPECT_EQ(view.exit_code, 2);
@@ -100,7 +100,7 @@ TEST_F(RenderTest, BadViewAndSizeAreLocatedUsageErrors) {
   EXPECT_NE(depth.err.find("--depth needs a camera view"), std::string::npos) << depth.err;
 }
 
-TEST_F(RenderTest, UnknownCameraNameListsTheSceneCameras) {
+TEST_F(RenderCommandTest, UnknownCameraNameListsTheSceneCameras) {
   const Result r =
       Run({"render", Example("table_cube.prs"), "--view", "camera:eye", "-o", Out("c.png")});
   EXPECT_EQ(r.exit_code, 2);
@@ -111,11 +111,12 @@ TEST_F(RenderTest, UnknownCameraNameListsTheSceneCameras) {
   EXPECT_FALSE(fs::exists(Out("c.png")));
 }
 
-TEST_F(RenderTest, NeedsNoDisplay) {
+TEST_F(RenderCommandTest, NeedsNoDisplay) {
   ::unsetenv("DISPLAY");
   ::unsetenv("WAYLAND_DISPLAY");
   ::setenv("CI", "true", 1);
-  const Result r = Run({"render", Example("table_cube.prs"), "--size", "64x48", "-o", Out("d.png")});
+  const Result r =
+      Run({"render", Example("table_cube.prs"), "--size", "64x48", "-o", Out("d.png")});
   EXPECT_EQ(r.exit_code, 0) << r.err;
   EXPECT_EQ(ReadPngHeader(Out("d.png")).height, 48u);
 }

@@ -1,7 +1,7 @@
 // The colour parser: names, grey levels, number lists in both scales, hex, and refusals.
-#include <gtest/gtest.h>
-
 #include "render/color.h"
+
+#include <gtest/gtest.h>
 
 namespace prs::render {
 namespace {

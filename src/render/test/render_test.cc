@@ -1,12 +1,12 @@
 // Rendering end to end on the software EGL context: size, content, where a known object lands,
 // camera depth against geometry, grids, PNG files, and view/size parsing.
+#include "render/render.h"
+
 #include <gtest/gtest.h>
 #include <png.h>
 
 #include <cmath>
 #include <filesystem>
-
-#include "render/render.h"
 
 namespace prs::render {
 namespace {
@@ -25,8 +25,7 @@ RenderObject MakeBox(const std::string& name, const Eigen::Vector3d& p_WO,
 // A grey table top (2 x 1.2 x 0.1 m, top at z = 0.5) with a red cube off its centre.
 RenderScene MakeTableScene() {
   RenderScene scene;
-  scene.objects.push_back(
-      MakeBox("table", {0, 0, 0.45}, {2, 1.2, 0.1}, {0.5f, 0.5f, 0.5f, 1}));
+  scene.objects.push_back(MakeBox("table", {0, 0, 0.45}, {2, 1.2, 0.1}, {0.5f, 0.5f, 0.5f, 1}));
   scene.objects.push_back(
       MakeBox("cube", {0.6, 0.3, 0.55}, {0.1, 0.1, 0.1}, {0.9f, 0.05f, 0.05f, 1}));
   return scene;
@@ -69,9 +68,7 @@ std::array<int, 3> PixelAt(const Image& image, int column, int row) {
   return {p[0], p[1], p[2]};
 }
 
-bool IsRed(const std::array<int, 3>& rgb) {
-  return rgb[0] > 120 && rgb[1] < 60 && rgb[2] < 60;
-}
+bool IsRed(const std::array<int, 3>& rgb) { return rgb[0] > 120 && rgb[1] < 60 && rgb[2] < 60; }
 
 // The red cube's centre (top face at z = 0.6) is red in the picture, in its upper right
 // quadrant: views from above show world +x to the right and +y upwards.
@@ -170,9 +167,9 @@ TEST(RenderTest, GridLaysTilesOutRowByRow) {
   const int g = kGridGutter;
   EXPECT_EQ(grid.width, 60 + 2 * g);
   EXPECT_EQ(grid.height, 20 + g);
-  EXPECT_EQ(PixelAt(grid, 45 + 2 * g, 5)[0], 20);  // tile 2: first row, third column
-  EXPECT_EQ(PixelAt(grid, 25 + g, 15 + g)[0], 40);  // tile 4: second row, second column
-  EXPECT_EQ(PixelAt(grid, 20, 5)[0], 255);          // the gutter after tile 0
+  EXPECT_EQ(PixelAt(grid, 45 + 2 * g, 5)[0], 20);        // tile 2: first row, third column
+  EXPECT_EQ(PixelAt(grid, 25 + g, 15 + g)[0], 40);       // tile 4: second row, second column
+  EXPECT_EQ(PixelAt(grid, 20, 5)[0], 255);               // the gutter after tile 0
   EXPECT_EQ(PixelAt(grid, 55 + 2 * g, 15 + g)[0], 255);  // the empty cell stays white
   tiles.push_back(MakeSolidTile(21, 10, 0));
   EXPECT_THROW(ComposeGrid(tiles), std::invalid_argument);

@@ -1,8 +1,9 @@
 // Scenes to RenderScene: JSON lines, sampled scenes with their workspace, outline edges.
+#include "render/scene_input.h"
+
 #include <gtest/gtest.h>
 
 #include "lang/lang.h"
-#include "render/scene_input.h"
 #include "sampling/sampler.h"
 
 namespace prs::render {
