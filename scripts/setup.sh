@@ -12,10 +12,19 @@ packages=(
   libcli11-dev           # the prs command line
   nlohmann-json3-dev     # scene JSON output and parsing
   clang libclang-rt-14-dev  # libFuzzer for the front-end fuzz target
-  libmujoco-dev libegl-dev libegl-mesa0 libgl1-mesa-dri  # prs render: MuJoCo's renderer on
-                         # EGL with Mesa's software rasteriser (llvmpipe), no GPU or display
+  libmujoco-dev          # physics for the simulated case study (src/sim), and prs render
+  libcpp-httplib-dev     # prs view's local HTTP server
+  chromium               # prs view's end-to-end test (headless, driven by puppeteer-core)
+  pybind11-dev python3-dev python3-numpy  # the Python package (python/)
+  python3-pip python3-setuptools python3-wheel  # pip install --no-build-isolation . (offline)
+  python3-pytest python3-matplotlib  # Python tests and the plotting example
+  libegl-dev libegl-mesa0 libgl1-mesa-dri  # prs render: MuJoCo's renderer on EGL with
+                         # Mesa's software rasteriser (llvmpipe), no GPU or display
   libpng-dev             # prs render: PNG files
 )
+# prs view bundles three.js with npm at build time; keep a Node.js that is already installed
+# (e.g. NodeSource's, which ships its own npm) and otherwise take Debian's.
+command -v npm >/dev/null || packages+=(nodejs npm)
 
 missing=()
 for p in "${packages[@]}"; do

@@ -4,10 +4,18 @@
 
 #include <string>
 
-#include "cli/property_variation.h"
-#include "cli/scenario_outline.h"
+#include "analysis/property_variation.h"
+#include "analysis/scenario_outline.h"
 
 namespace prs::cli {
+
+// The outline and the variation are computed in prs_analysis (shared with the Python package).
+using analysis::ClassOutline;
+using analysis::CreationSite;
+using analysis::OutlineScenario;
+using analysis::ScenarioOutline;
+using analysis::SiteVariation;
+using analysis::VariationObserver;
 
 /// "FILE: ok (M modules, C classes, S creation sites)".
 std::string FormatCheckHeader(const std::string& file, const lang::CompiledProgram& program,

@@ -25,6 +25,7 @@ const std::vector<Command>& CommandTable();
 CommandRunner ConfigureSampleCommand(CLI::App& command);
 CommandRunner ConfigureCheckCommand(CLI::App& command);
 CommandRunner ConfigureStatsCommand(CLI::App& command);
+CommandRunner ConfigureViewCommand(CLI::App& command);
 CommandRunner ConfigureRenderCommand(CLI::App& command);
 
 }  // namespace prs::cli

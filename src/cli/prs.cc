@@ -19,6 +19,7 @@ const std::vector<Command>& CommandTable() {
       {"check", "compile a scenario and outline its objects, classes and randomness",
        ConfigureCheckCommand},
       {"stats", "sample scenes and report acceptance, rejections and speed", ConfigureStatsCommand},
+      {"view", "look at scenes in a local web viewer (or write one HTML file)", ConfigureViewCommand},
       {"render", "draw scenes as PNG pictures (offscreen, no display needed)", ConfigureRenderCommand},
   };
   return kCommands;

@@ -80,12 +80,15 @@ std::string FormatOverview(const SamplingStats& stats) {
 }
 
 std::string FormatReasonTable(const sampling::BatchSummary& s) {
-  TextTable table({"reason", "count", "per attempt"}, "lrr");
+  // "per scene" is the paper's Table II figure: rejections per valid scene.
+  TextTable table({"reason", "count", "per attempt", "per scene"}, "lrrr");
   for (const auto& [kind, n] : s.rejections.by_kind) {
-    table.AddRow({lang::RejectionKindName(kind), std::to_string(n), Percent(n, s.attempts)});
+    table.AddRow({lang::RejectionKindName(kind), std::to_string(n), Percent(n, s.attempts),
+                  fmt::format("{:.2f}", Ratio(n, s.scenes))});
   }
-  table.AddRow(
-      {"total", std::to_string(s.rejections.total), Percent(s.rejections.total, s.attempts)});
+  table.AddRow({"total", std::to_string(s.rejections.total),
+                Percent(s.rejections.total, s.attempts),
+                fmt::format("{:.2f}", Ratio(s.rejections.total, s.scenes))});
   return "\nrejections by reason\n" + table.Format();
 }
 

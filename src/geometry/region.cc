@@ -5,6 +5,7 @@
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
+#include <limits>
 #include <sstream>
 #include <stdexcept>
 
@@ -352,7 +353,22 @@ bool ConvexRegion::Contains(const Eigen::Vector3d& p_W, double tolerance) const 
 }
 
 bool ConvexRegion::ContainsBox(const OrientedBox& box, double tolerance) const {
-  if (IsEmpty() || !Contains(box.p_center, tolerance)) return false;
+  // Contains() proves non-emptiness on its own, mostly without canonicalizing the region
+  // (the workspace is checked in every scene, so this matters for speed).
+  if (!Contains(box.p_center, tolerance)) return false;
+  if (equalities_.empty() && balls_.empty()) {
+    // A polytope holds the box iff each half-space holds the box's support point along its
+    // normal: one dot product per face instead of eight corner tests.
+    double excess = -std::numeric_limits<double>::infinity();
+    for (const HalfSpace& h : half_spaces_) {
+      const Eigen::Vector3d n_B = box.R_WB.transpose() * h.normal;
+      excess = std::max(excess, h.normal.dot(box.p_center) + n_B.cwiseAbs().dot(box.half_extents) -
+                                    h.offset);
+    }
+    if (excess <= tolerance) return true;
+    // Clearly outside; only a collapsed sliver's extra slack (see Contains) needs the corners.
+    if (excess > tolerance + 4 * kGeometricTolerance) return false;
+  }
   AffineHull eq_hull;
   if (!internal::CalcEqualityHull(equalities_, &eq_hull)) return false;
   const Eigen::Matrix3d P = eq_hull.basis * eq_hull.basis.transpose();

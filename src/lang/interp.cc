@@ -31,12 +31,19 @@ namespace internal {
 Interpreter::Interpreter(const CompiledProgram& program, geometry::Rng& rng,
                          const RunOptions& options)
     : program_(program), rng_(rng), options_(options),
-      module_envs_(program.modules.size()), module_ran_(program.modules.size(), false) {}
+      module_envs_(program.modules.size()), module_ran_(program.modules.size(), false),
+      module_shared_(program.modules.size(), false),
+      imports_unshared_(program.modules.size(), false) {
+  // Most programs create each creation site's object once: room for that without regrowing.
+  scene_.objects.reserve(program.plans.size());
+  completed_.reserve(program.plans.size());
+}
 
 AttemptResult Interpreter::Run() {
   try {
     RunModule(program_.main_module);
     CheckWorkspace();
+    if (naive_violation_) throw RejectSignal{std::move(*naive_violation_)};
   } catch (RejectSignal& signal) {
     signal.rejection.certain = draws_ == 0;
     return std::move(signal.rejection);
@@ -52,10 +59,49 @@ AttemptResult Interpreter::Run() {
 void Interpreter::RunModule(int module_index) {
   if (module_ran_[module_index]) return;
   module_ran_[module_index] = true;
+  const bool cacheable = options_.cache && module_index != program_.main_module;
+  if (cacheable) {
+    auto it = options_.cache->module_globals.find(module_index);
+    if (it != options_.cache->module_globals.end()) {
+      module_envs_[module_index] = it->second;
+      module_shared_[module_index] = true;
+      return;
+    }
+  }
+  const int64_t draws_before = draws_;
+  const size_t objects_before = scene_.objects.size(), params_before = scene_.params.size();
   const int saved = current_module_;
   current_module_ = module_index;
   ExecBody(program_.modules[module_index]->ast.body);
   current_module_ = saved;
+  // A module that imports an unshared one may hold its draws (`from random import *`).
+  if (cacheable && draws_ == draws_before && scene_.objects.size() == objects_before &&
+      scene_.params.size() == params_before && !imports_unshared_[module_index] &&
+      IsSameInEveryScene(module_envs_[module_index])) {
+    options_.cache->module_globals[module_index] = module_envs_[module_index];
+    module_shared_[module_index] = true;
+  }
+}
+
+// Whether a value can be shared by later scenes: not one that a scene can change (lists,
+// dicts), that refers to this scene's objects, or that remembers a draw (tuples).
+bool Interpreter::IsSameInEveryScene(const Value& value) {
+  return std::visit(
+      [](const auto& v) {
+        using T = std::decay_t<decltype(v)>;
+        return !std::is_same_v<T, ObjectRef> && !std::is_same_v<T, BoundMethod> &&
+               !std::is_same_v<T, std::shared_ptr<TupleData>> &&
+               !std::is_same_v<T, std::shared_ptr<ListData>> &&
+               !std::is_same_v<T, std::shared_ptr<DictData>>;
+      },
+      value.data);
+}
+
+bool Interpreter::IsSameInEveryScene(const Env& env) {
+  for (const auto& [name, value] : env) {
+    if (!IsSameInEveryScene(value)) return false;
+  }
+  return true;
 }
 
 Flow Interpreter::ExecBody(const std::vector<StmtPtr>& body) {
@@ -104,6 +150,7 @@ Flow Interpreter::Exec(const Stmt& stmt) {
   } else if (const auto* node = std::get_if<FromImportStmt>(&stmt.node)) {
     const int target = program_.import_targets.at(node);
     RunModule(target);
+    if (!module_shared_[target]) imports_unshared_[current_module_] = true;
     for (const auto& [name, value] : module_envs_[target]) module_envs_[current_module_][name] = value;
   }
   return Flow::kNormal;

@@ -4,6 +4,7 @@
 // creation plans and scene checks), placement.cc (position regions and sampling).
 #pragma once
 
+#include <optional>
 #include <string>
 #include <unordered_map>
 #include <vector>
@@ -31,12 +32,17 @@ struct PositionConstraint {
   Eigen::Vector3d p_W = Eigen::Vector3d::Zero();
   geometry::ConvexRegion region = geometry::ConvexRegion::All();
   int target_object = -1;  // `on`/`completely on` an object: its index, for messages
+  /// Naive mode only: where a lower-dimensional specifier's draw comes from when it differs
+  /// from `region` (for `completely on`, the whole face before erosion).
+  std::optional<geometry::ConvexRegion> naive_domain;
 };
 
 class Interpreter {
  public:
   Interpreter(const CompiledProgram& program, geometry::Rng& rng, const RunOptions& options);
   AttemptResult Run();
+  static bool IsSameInEveryScene(const Value& value);
+  static bool IsSameInEveryScene(const Env& env);
 
   // --- expressions (eval.cc) ---
   Value Eval(const Expr& expr);
@@ -142,6 +148,9 @@ class Interpreter {
       int index, SourceSpan span);
   std::vector<int> FixedObstacles(int index) const;
   Eigen::Vector3d SampleFixed(const FixedPlacement& placement);
+  // Fixed objects (ObjectPlan::object_fixed) built once per RunCache and copied afterwards.
+  const SceneObject* CachedFixedObject(const ObjectPlan& plan) const;
+  void StoreFixedObject(const ObjectPlan& plan, int index, int64_t draws_before);
   Eigen::Vector3d SampleNaive(const std::vector<PositionConstraint>& constraints, int index,
                               SourceSpan span);
   // Why no position fits: the empty specifier with the sizes involved, or every region.
@@ -164,6 +173,8 @@ class Interpreter {
   std::vector<bool> completed_;      // per object: fully placed (collision checks use these)
   std::vector<Env> module_envs_;
   std::vector<bool> module_ran_;
+  std::vector<bool> module_shared_;     // globals from, or stored in, RunCache::module_globals
+  std::vector<bool> imports_unshared_;  // imported a module whose globals are not shared
   int current_module_ = 0;
   Env* locals_ = nullptr;            // the current function's frame, if any
   // The variable a statement `NAME = Class ...` binds, so the object carries its name
@@ -174,6 +185,9 @@ class Interpreter {
   int call_depth_ = 0;
   int64_t loop_iterations_ = 0;
   int64_t draws_ = 0;
+  // Naive mode: the first specifier found not to hold. As in the paper's tool, specifiers are
+  // checked as constraints once the scene is complete, after collisions and the workspace.
+  std::optional<Rejection> naive_violation_;
   Value return_value_;
 };
 

@@ -15,7 +15,16 @@ Value Interpreter::CreateObject(const ObjectPlan& plan, SourceSpan span) {
                                      " objects in one scene; is a loop creating too many?");
   }
   const int index = static_cast<int>(scene_.objects.size());
+  if (const SceneObject* cached = CachedFixedObject(plan)) {
+    pending_name_ = nullptr;
+    scene_.objects.push_back(*cached);
+    completed_.push_back(false);
+    FinishObject(index, span);  // an earlier random object may still collide with it
+    return ObjectRef{index};
+  }
+  const int64_t draws_before = draws_;
   SceneObject object;
+  object.properties.reserve(plan.steps.size() + 1);  // every property once, and the position
   object.cls = plan.cls;
   object.span = span;
   object.fixed = plan.object_fixed;
@@ -33,6 +42,7 @@ Value Interpreter::CreateObject(const ObjectPlan& plan, SourceSpan span) {
     }
   }
   FinishObject(index, span);
+  StoreFixedObject(plan, index, draws_before);
   return ObjectRef{index};
 }
 
@@ -116,8 +126,10 @@ void Interpreter::SetOrientation(const PlanStep& step, int index) {
 void Interpreter::SetProperty(int index, const std::string& name, Value value,
                               SourceSpan value_span) {
   SceneObject& o = scene_.objects[index];
-  const bool numeric = name == "width" || name == "length" || name == "height" || name == "yaw" ||
-                       name == "pitch" || name == "roll";
+  using namespace std::literals;  // string_view comparisons: length first, then bytes
+  const std::string_view key = name;
+  const bool numeric = key == "width"sv || key == "length"sv || key == "height"sv ||
+                       key == "yaw"sv || key == "pitch"sv || key == "roll"sv;
   if (numeric) {
     const double x = ToNumber(value, value_span, "'" + name + "'");
     if (!std::isfinite(x) || (name[0] != 'y' && name[0] != 'p' && name[0] != 'r' && x < 0)) {
@@ -125,12 +137,12 @@ void Interpreter::SetProperty(int index, const std::string& name, Value value,
                                     "; sizes must be finite and >= 0");
     }
     value = Value(x);
-    if (name == "width") o.dimensions.x() = x;
-    if (name == "length") o.dimensions.y() = x;
-    if (name == "height") o.dimensions.z() = x;
+    if (key == "width"sv) o.dimensions.x() = x;
+    if (key == "length"sv) o.dimensions.y() = x;
+    if (key == "height"sv) o.dimensions.z() = x;
   }
   for (auto& [existing, v] : o.properties) {
-    if (existing == name) {
+    if (std::string_view(existing) == key) {
       v = std::move(value);
       return;
     }

@@ -1,7 +1,8 @@
 // Placement: turns an object's position specifiers into points and exact convex regions
 // (spec §5), intersects them with the workspace eroded by the object's box, and samples the
-// result uniformly. In naive mode, positions come from the workspace and every specifier is
-// checked afterwards instead (the paper's baseline).
+// result uniformly. In naive mode, positions come from the workspace (or from the region of a
+// lower-dimensional specifier such as `on`) and every specifier is checked afterwards instead
+// (the paper's baseline).
 #include <cmath>
 
 #include "lang/interp_internal.h"
@@ -22,23 +23,6 @@ std::string Format(double x) {
 
 bool IsRelativeSpecifier(SpecifierKind kind) {
   return IsSideSpecifier(kind) || kind == SpecifierKind::kAlignedWith;
-}
-
-// The affine hull of a lower-dimensional region, as a region (naive mode's sampling domain).
-ConvexRegion HullRegion(const ConvexRegion& region) {
-  const geometry::AffineHull& hull = region.hull();
-  switch (hull.basis.cols()) {
-    case 0: return ConvexRegion::MakePoint(hull.p_origin);
-    case 2: return ConvexRegion::MakePlane(hull.p_origin, region.CalcPlaneNormal());
-    case 1: {
-      const Vector3d direction = hull.basis.col(0);
-      const Vector3d helper = std::abs(direction.x()) < 0.9 ? Vector3d::UnitX() : Vector3d::UnitY();
-      const Vector3d n1 = direction.cross(helper).normalized(), n2 = direction.cross(n1);
-      return geometry::Intersect(ConvexRegion::MakePlane(hull.p_origin, n1),
-                                 ConvexRegion::MakePlane(hull.p_origin, n2));
-    }
-    default: return ConvexRegion::All();
-  }
 }
 
 // The region moved by t (exact: every constraint is shifted).
@@ -219,6 +203,7 @@ PositionConstraint Interpreter::EvalOnConstraint(const Specifier& s, int index, 
     return c;
   }
   if (completely) {
+    if (options_.mode == SamplingMode::kNaive) c.naive_domain = c.region;
     const geometry::OrientedBox box = BoxOf(index);
     c.region = geometry::ErodeByBox(c.region, box.R_WB, box.half_extents);
   }
@@ -323,8 +308,10 @@ Vector3d Interpreter::SampleNaive(const std::vector<PositionConstraint>& constra
     if (c.is_point) {
       p = c.p_W;
       have_point = true;
-    } else if (c.region.dimension() < 3 && !c.region.IsEmpty()) {
-      domain = geometry::Intersect(domain, HullRegion(c.region));
+    } else if (c.naive_domain) {
+      domain = geometry::Intersect(domain, *c.naive_domain);
+    } else if (c.region.dimension() < 3) {
+      domain = geometry::Intersect(domain, c.region);
     }
   }
   if (!have_point) {
@@ -335,12 +322,13 @@ Vector3d Interpreter::SampleNaive(const std::vector<PositionConstraint>& constra
     p = geometry::RegionSampler(domain).Sample(rng());
   }
   for (const PositionConstraint& c : constraints) {
-    if (c.is_point || c.region.Contains(p, 1e-9)) continue;
-    Reject(IsRelativeSpecifier(c.specifier->kind) ? RejectionKind::kRelativePosition
-                                                  : RejectionKind::kContainment,
-           scene_.objects[index].DisplayName(index) + " " +
-               DescribeSpecifier(*c.specifier, program_.sources),
-           c.specifier->span);
+    if (naive_violation_ || c.is_point || c.region.Contains(p, 1e-9)) continue;
+    naive_violation_ = Rejection{
+        IsRelativeSpecifier(c.specifier->kind) ? RejectionKind::kRelativePosition
+                                               : RejectionKind::kContainment,
+        scene_.objects[index].DisplayName(index) + " " +
+            DescribeSpecifier(*c.specifier, program_.sources),
+        c.specifier->span, ""};
   }
   return p;
 }

@@ -4,6 +4,7 @@
 // (spec §7): the fraction of the region cut away is the same in every scene, so removing it
 // changes no scene's weight, only the number of rejected attempts. The pieces are built once
 // per thread and cached (RunCache); building or reusing them consumes the same random draws.
+// Objects that are wholly fixed (ObjectPlan::object_fixed) are likewise built once and copied.
 #include "geometry/difference.h"
 #include "lang/interp_internal.h"
 
@@ -113,6 +114,25 @@ Vector3d Interpreter::SampleFixed(const FixedPlacement& placement) {
     while (i + 1 < placement.pieces.size() && u >= placement.cumulative_measure[i]) ++i;
   }
   return placement.pieces[i].Sample(rng());
+}
+
+const SceneObject* Interpreter::CachedFixedObject(const ObjectPlan& plan) const {
+  if (!plan.object_fixed || !options_.cache || options_.mode != SamplingMode::kRegion) return nullptr;
+  auto it = options_.cache->fixed_objects.find(&plan);
+  return it == options_.cache->fixed_objects.end() ? nullptr : &it->second;
+}
+
+// Keeps a fixed object for later scenes when building it provably had no effect but the object
+// itself: no draw, no nested object, and no property that refers to this scene's objects
+// (whose indices may differ in another scene).
+void Interpreter::StoreFixedObject(const ObjectPlan& plan, int index, int64_t draws_before) {
+  if (!plan.object_fixed || !options_.cache || options_.mode != SamplingMode::kRegion) return;
+  if (draws_ != draws_before || index + 1 != static_cast<int>(scene_.objects.size())) return;
+  const SceneObject& object = scene_.objects[index];
+  for (const auto& [name, value] : object.properties) {
+    if (!IsSameInEveryScene(value)) return;
+  }
+  options_.cache->fixed_objects.emplace(&plan, object);
 }
 
 }  // namespace prs::lang::internal

@@ -4,10 +4,12 @@
 #pragma once
 
 #include <memory>
+#include <string>
 #include <unordered_map>
 
 #include "geometry/sampling.h"
 #include "lang/lang.h"
+#include "lang/value.h"
 
 namespace prs::lang {
 
@@ -21,6 +23,12 @@ struct FixedPlacement {
 class RunCache {
  public:
   std::unordered_map<const ObjectPlan*, std::shared_ptr<const FixedPlacement>> placements;
+  /// The globals of imported modules whose run drew nothing, created no object or param and
+  /// left only immutable values, by module index: such a module binds the same values in every
+  /// scene, and sharing them keeps derived data (a workspace's vertices) across scenes.
+  std::unordered_map<int, std::unordered_map<std::string, Value>> module_globals;
+  /// Objects of fixed creation sites (ObjectPlan::object_fixed), as first built.
+  std::unordered_map<const ObjectPlan*, SceneObject> fixed_objects;
 };
 
 }  // namespace prs::lang

@@ -4,9 +4,12 @@
 // `prs sample`); strings that need escaping go through nlohmann-json.
 #include "output/scene_json.h"
 
+#include <fmt/compile.h>
 #include <fmt/format.h>
 
+#include <charconv>
 #include <cmath>
+#include <cstdint>
 #include <nlohmann/json.hpp>
 
 #include "geometry/rotation.h"
@@ -23,8 +26,19 @@ void AppendNumber(double x, Out& out) {
     out += "null";
     return;
   }
+  // Whole numbers (most dimensions, quaternion parts, zeros) are common: print them as integers.
+  if (x == std::trunc(x) && std::abs(x) < 1e15) {
+    if (std::signbit(x)) out += '-';
+    char digits[24];
+    const auto end = std::to_chars(digits, digits + sizeof digits,
+                                   static_cast<int64_t>(std::abs(x))).ptr;
+    out.append(digits, end);
+    out += ".0";
+    return;
+  }
   const size_t begin = out.size();
-  fmt::format_to(std::back_inserter(out), "{}", x);
+  char digits[32];  // fmt's shortest form, compiled: no format-string parsing per number
+  out.append(digits, fmt::format_to(digits, FMT_COMPILE("{}"), x));
   if (out.find_first_of(".e", begin) == std::string::npos) out += ".0";
 }
 
@@ -94,11 +108,6 @@ void AppendValue(const lang::Value& v, Out& out) {
   AppendString(lang::Repr(v), out);
 }
 
-bool IsCoreProperty(const std::string& name) {
-  return name == "position" || name == "orientation" || name == "width" || name == "length" ||
-         name == "height" || name == "yaw" || name == "pitch" || name == "roll";
-}
-
 void AppendProperties(const lang::SceneObject& o, Out& out) {
   out += '{';
   bool first = true;
@@ -164,6 +173,14 @@ void AppendParams(const lang::Scene& scene, Out& out) {
 }
 
 }  // namespace
+
+// string_view comparisons check the length first, so most names are rejected without memcmp.
+bool IsCoreProperty(std::string_view name) {
+  using namespace std::literals;
+  return name == "position"sv || name == "orientation"sv || name == "width"sv ||
+         name == "length"sv || name == "height"sv || name == "yaw"sv || name == "pitch"sv ||
+         name == "roll"sv;
+}
 
 std::string FormatSceneJson(const sampling::SampledScene& sampled) {
   std::string out;

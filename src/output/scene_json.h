@@ -2,6 +2,7 @@
 #pragma once
 
 #include <string>
+#include <string_view>
 
 #include "sampling/sampler.h"
 
@@ -9,5 +10,9 @@ namespace prs::output {
 
 /// Renders one sampled scene as a single line of JSON (no trailing newline).
 std::string FormatSceneJson(const sampling::SampledScene& sampled);
+
+/// True for the properties §8 writes outside "properties" (position, orientation, width,
+/// length, height, yaw, pitch, roll).
+bool IsCoreProperty(std::string_view name);
 
 }  // namespace prs::output

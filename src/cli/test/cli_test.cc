@@ -224,7 +224,7 @@ TEST_F(PrsTest, StatsTableLocatesTheCulprit) {
   ASSERT_EQ(r.exit_code, 0) << r.err;
   for (const std::string& expected :
        {std::string("acceptance rate"), std::string("rejections by reason"),
-        std::string("rejections by culprit"), file + ":4:1"}) {
+        std::string("per scene"), std::string("rejections by culprit"), file + ":4:1"}) {
     EXPECT_NE(r.out.find(expected), std::string::npos) << expected << "\n" << r.out;
   }
 }

@@ -1,6 +1,6 @@
-// A static outline of a compiled scenario for `prs check`: every object-creation site (class,
-// variable, line, position specifiers and the kind of region they define) and the classes the
-// program defines. Read from the AST and the creation plans; nothing is run.
+// A static outline of a compiled scenario for `prs check` and Python's Scenario.check(): every
+// object-creation site (class, variable, line, position specifiers and the kind of region they
+// define) and the classes the program defines. Read from the AST and plans; nothing is run.
 #pragma once
 
 #include <optional>
@@ -10,7 +10,7 @@
 
 #include "lang/lang.h"
 
-namespace prs::cli {
+namespace prs::analysis {
 
 /// Identifies a creation site, and the scene objects it made: (file, byte offset where the
 /// creation expression starts), the same as SceneObject::span's file and begin.
@@ -46,4 +46,4 @@ ScenarioOutline OutlineScenario(const lang::CompiledProgram& program);
 std::string DescribePositionRegion(const lang::ObjectPlan& plan,
                                    const lang::SourceManager& sources);
 
-}  // namespace prs::cli
+}  // namespace prs::analysis

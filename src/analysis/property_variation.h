@@ -1,5 +1,5 @@
-// Which properties are random, found empirically for `prs check`: scenes are sampled and, per
-// creation site, every property of its k-th object is compared across scenes, exactly.
+// Which properties are random, found empirically for `prs check` and Scenario.check(): scenes
+// are sampled and, per creation site, every property of its k-th object is compared exactly.
 #pragma once
 
 #include <cstdint>
@@ -7,10 +7,10 @@
 #include <string>
 #include <vector>
 
-#include "cli/scenario_outline.h"
+#include "analysis/scenario_outline.h"
 #include "lang/scene.h"
 
-namespace prs::cli {
+namespace prs::analysis {
 
 /// What one creation site did across the observed scenes.
 struct SiteVariation {
@@ -45,4 +45,4 @@ class VariationObserver {
 /// An exact text for a value (numbers with 17 significant digits), equal only for equal values.
 std::string FormatExactValue(const lang::Value& value);
 
-}  // namespace prs::cli
+}  // namespace prs::analysis

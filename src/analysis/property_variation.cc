@@ -1,5 +1,5 @@
 // Exact comparison of object properties across sampled scenes, site by site.
-#include "cli/property_variation.h"
+#include "analysis/property_variation.h"
 
 #include <fmt/format.h>
 
@@ -7,7 +7,7 @@
 
 #include "lang/value.h"
 
-namespace prs::cli {
+namespace prs::analysis {
 namespace {
 
 std::string FormatExactNumbers(std::initializer_list<double> numbers) {
@@ -93,4 +93,4 @@ void VariationObserver::CompareObject(const lang::SceneObject& object, size_t k,
   }
 }
 
-}  // namespace prs::cli
+}  // namespace prs::analysis

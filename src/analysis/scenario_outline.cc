@@ -1,12 +1,12 @@
 // Builds the static outline: creation sites from the plans (and bare class names used as
 // statements), variable names from the assignments that bind them, region kinds from the
 // position specifiers' syntax.
-#include "cli/scenario_outline.h"
+#include "analysis/scenario_outline.h"
 
 #include <algorithm>
 #include <map>
 
-namespace prs::cli {
+namespace prs::analysis {
 namespace {
 
 using lang::SpecifierKind;
@@ -228,4 +228,4 @@ ScenarioOutline OutlineScenario(const lang::CompiledProgram& program) {
   return {CollectSites(program), CollectClasses(program)};
 }
 
-}  // namespace prs::cli
+}  // namespace prs::analysis

@@ -1,0 +1,112 @@
+"""ProbRobScene from Python: compile ``.prs`` scenarios and sample scenes at C++ speed.
+
+    import probrobscene as prs
+    scenario = prs.load("examples/table_cube.prs")
+    scenes = scenario.sample_batch(1000, seed=1)      # all threads, without the GIL
+    xyz = prs.positions(scenes, "c1")                 # numpy array (1000, 3)
+
+Scene ``i`` of seed ``s`` is the scene ``prs sample -s s --start i`` prints, on any machine and
+any number of threads. Units are metres and radians. See docs/python.md.
+"""
+
+import numbers
+import os
+from typing import Iterator, Mapping, Optional, Sequence, Union
+
+from . import _core
+from ._core import (Scenario, Scene, SceneObject, dimensions, positions, quaternions,
+                    yaw_pitch_roll)
+from ._errors import SamplingError, ScenarioError
+
+__version__ = "0.1.0"
+__all__ = [
+    "load", "loads", "Scenario", "Scene", "SceneObject", "ScenarioError", "SamplingError",
+    "positions", "dimensions", "quaternions", "yaw_pitch_roll",
+]
+
+PathLike = Union[str, "os.PathLike[str]"]
+ParamValue = Union[int, float, str]
+
+
+def load(path: PathLike, params: Optional[Mapping[str, ParamValue]] = None,
+         search_path: Optional[Sequence[PathLike]] = None, *, max_attempts: int = 10_000,
+         naive: bool = False) -> Scenario:
+    """Compiles the scenario in the file ``path``.
+
+    Args:
+        path: The ``.prs`` file. Its own directory is searched first for imported modules.
+        params: Overrides of the scenario's ``param`` values, as ``prs -p NAME=VALUE``: numbers,
+            or strings (a string that reads as a number becomes that number, as on the command
+            line). A name the scenario does not declare is an error.
+        search_path: Further directories searched for ``from NAME import *``; the directories
+            in the environment variable ``PRS_PATH`` follow them, as for ``prs``.
+        max_attempts: Attempts per scene before sampling fails (``prs --max-attempts``).
+        naive: Sample positions from the workspace and check the specifiers afterwards (the
+            paper's baseline, ``prs --naive``); the scenes differ from the default mode's.
+
+    Raises:
+        ScenarioError: The file cannot be read or the program has errors; the exception carries
+            the first error's message, id, file, line and column, and every error's text.
+    """
+    return _core.compile_file(os.fspath(path),
+                              _load_options(params, search_path, max_attempts, naive))
+
+
+def loads(text: str, params: Optional[Mapping[str, ParamValue]] = None,
+          search_path: Optional[Sequence[PathLike]] = None, *, name: str = "<string>",
+          max_attempts: int = 10_000, naive: bool = False) -> Scenario:
+    """Compiles scenario source text; ``name`` names it in messages and anchors its imports.
+
+    The other arguments and the errors are those of :func:`load`.
+    """
+    return _core.compile_text(text, name,
+                              _load_options(params, search_path, max_attempts, naive))
+
+
+def _param_text(name: str, value: ParamValue) -> str:
+    if isinstance(value, str):
+        return value
+    if isinstance(value, bool) or not isinstance(value, numbers.Real):
+        raise TypeError(f"param {name!r}: expected a number or a string, "
+                        f"got {type(value).__name__}")
+    if isinstance(value, numbers.Integral):
+        return str(int(value))
+    return repr(float(value))  # the shortest text that reads back as the same float
+
+
+def _load_options(params, search_path, max_attempts, naive) -> "_core.LoadOptions":
+    options = _core.LoadOptions()
+    options.params = [(str(k), _param_text(str(k), v)) for k, v in (params or {}).items()]
+    dirs = [os.fspath(d) for d in (search_path or [])]
+    dirs += [d for d in os.environ.get("PRS_PATH", "").split(":") if d]
+    options.search_path = dirs
+    options.max_attempts = max_attempts
+    options.naive = naive
+    return options
+
+
+def _scenes(self: Scenario, seed: int = 0, start: int = 0, count: Optional[int] = None,
+            threads: Optional[int] = 1) -> Iterator[Scene]:
+    """Iterates over scenes ``start``, ``start + 1``, ... of ``seed``, forever unless ``count``.
+
+    With ``threads=1`` (the default) each scene is sampled when it is asked for. With more
+    threads (``None``: all), scenes are sampled ahead in batches of 64 per thread by
+    :meth:`sample_batch`; the scenes are the same either way.
+    """
+    if count is not None and count < 0:
+        raise ValueError(f"count must be >= 0, got {count}")
+    end = None if count is None else start + count
+    index = start
+    if threads == 1:
+        while end is None or index < end:
+            yield self.sample(seed, index)
+            index += 1
+        return
+    chunk = 64 * (threads or os.cpu_count() or 1)
+    while end is None or index < end:
+        n = chunk if end is None else min(chunk, end - index)
+        yield from self.sample_batch(n, seed=seed, start=index, threads=threads)
+        index += n
+
+
+Scenario.scenes = _scenes

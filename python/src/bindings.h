@@ -1,0 +1,60 @@
+// Shared declarations of the probrobscene extension module (_core): a sampled scene as Python
+// holds it, the conversion of language values to Python objects, and raising ScenarioError.
+#pragma once
+
+#include <pybind11/numpy.h>
+#include <pybind11/pybind11.h>
+
+#include <initializer_list>
+#include <memory>
+#include <string>
+
+#include "lang/lang.h"
+#include "sampling/sampler.h"
+
+namespace prs::python {
+
+namespace py = pybind11;
+
+using ProgramPtr = std::shared_ptr<const lang::CompiledProgram>;
+
+/// One sampled scene. Holds its program because objects and values point into it (classes).
+struct Scene {
+  ProgramPtr program;
+  sampling::SampledScene sampled;
+};
+using ScenePtr = std::shared_ptr<Scene>;
+
+/// One object of a scene, seen through the scene (which it keeps alive).
+struct SceneObjectView {
+  ScenePtr scene;
+  int index = 0;
+
+  const lang::SceneObject& object() const { return scene->sampled.scene.objects[index]; }
+};
+
+/// A language value as a Python object: numbers, booleans, strings and None as themselves,
+/// vectors as numpy arrays of 3, tuples, lists and dicts element by element; anything else
+/// (a region, a class, ...) as its short description, as the JSON output writes it.
+py::object ToPython(const lang::Value& value);
+
+/// A new 1-D float64 numpy array holding `numbers`.
+py::array_t<double> MakeArray(std::initializer_list<double> numbers);
+
+/// The canonical quaternion (w, x, y, z) and yaw, pitch, roll of an object, as in spec §8.
+Eigen::Vector4d CalcQuaternionWxyz(const lang::SceneObject& object);
+Eigen::Vector3d CalcObjectYawPitchRoll(const lang::SceneObject& object);
+
+/// Raises probrobscene.ScenarioError (SamplingError when the id is "sampling-failed") carrying
+/// the diagnostic's message, id and location; `text` is the full Clang-style rendering.
+/// A diagnostic without a location (an unreadable main file) names `file` instead.
+[[noreturn]] void RaiseScenarioError(const lang::Diagnostic& diagnostic,
+                                     const lang::SourceManager& sources, const std::string& text,
+                                     const std::string& file = "");
+
+/// Registers Scene, SceneObject and the batch helpers (scene.cc).
+void BindScene(py::module_& m);
+/// Registers Scenario and the compile functions (scenario.cc).
+void BindScenario(py::module_& m);
+
+}  // namespace prs::python

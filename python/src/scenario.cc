@@ -1,0 +1,265 @@
+// Scenario: a compiled program and its sampling options, with sample(), sample_batch() (on
+// worker threads, without the GIL, identical to `prs sample`) and check() (the compiled outline
+// and the properties seen to vary, as `prs check` prints them).
+#include <pybind11/stl.h>
+
+#include <algorithm>
+#include <chrono>
+#include <thread>
+
+#include "analysis/property_variation.h"
+#include "analysis/scenario_outline.h"
+#include "bindings.h"
+#include "sampling/batch.h"
+
+namespace prs::python {
+namespace {
+
+using Clock = std::chrono::steady_clock;
+constexpr int kMaxThreads = 1024;
+
+std::string RenderErrors(const lang::DiagnosticEngine& diagnostics,
+                         const lang::SourceManager& sources) {
+  std::string text;
+  for (const lang::Diagnostic& d : diagnostics.diagnostics()) {
+    if (d.severity == lang::Severity::kError) text += lang::RenderDiagnostic(d, sources);
+  }
+  return text;
+}
+
+// Thrown from a batch's consume callback when Python has an exception pending (Ctrl-C).
+struct PythonErrorPending {};
+
+class Scenario {
+ public:
+  Scenario(ProgramPtr program, std::string path, sampling::SampleOptions options)
+      : program_(std::move(program)),
+        path_(std::move(path)),
+        options_(options),
+        sampler_(*program_, options_) {}
+
+  ScenePtr Sample(uint64_t seed, uint64_t index) {
+    // The GIL stays held: it is what keeps two Python threads off the one cached sampler.
+    return Wrap(Call([&] { return sampler_.Sample(seed, index); }));
+  }
+
+  std::vector<ScenePtr> SampleBatch(int64_t count, uint64_t seed, uint64_t start,
+                                    std::optional<int> threads) {
+    std::vector<sampling::SampledScene> sampled;
+    sampled.reserve(size_t(std::clamp<int64_t>(count, 0, 1 << 16)));  // n may be a guess
+    RunBatch(count, seed, start, threads,
+             [&](sampling::BatchScene&& scene) { sampled.push_back(std::move(scene.sampled)); });
+    std::vector<ScenePtr> scenes;
+    scenes.reserve(sampled.size());
+    for (auto& s : sampled) scenes.push_back(Wrap(std::move(s)));
+    return scenes;
+  }
+
+  py::dict Check(int64_t count, uint64_t seed, std::optional<int> threads) {
+    const analysis::ScenarioOutline outline = analysis::OutlineScenario(*program_);
+    analysis::VariationObserver observer;
+    RunBatch(count, seed, 0, threads,
+             [&](sampling::BatchScene&& scene) { observer.Observe(scene.sampled.scene); });
+    py::dict summary;
+    summary["file"] = path_;
+    summary["modules"] = program_->modules.size();
+    summary["seed"] = seed;
+    summary["scenes_observed"] = observer.scenes();
+    summary["sites"] = DescribeSites(outline, observer);
+    summary["classes"] = DescribeClasses(outline);
+    return summary;
+  }
+
+  const std::string& path() const { return path_; }
+  int64_t max_attempts() const { return options_.max_attempts; }
+  bool naive() const { return options_.run.mode == lang::SamplingMode::kNaive; }
+
+ private:
+  ScenePtr Wrap(sampling::SampledScene sampled) const {
+    return std::make_shared<Scene>(Scene{program_, std::move(sampled)});
+  }
+
+  // Runs `body`, turning the engine's ScenarioError into probrobscene.ScenarioError.
+  template <typename Body>
+  auto Call(Body body) -> decltype(body()) {
+    try {
+      return body();
+    } catch (const lang::ScenarioError& error) {
+      RaiseScenarioError(error.diagnostic(), program_->sources,
+                         lang::RenderDiagnostic(error.diagnostic(), program_->sources));
+    }
+  }
+
+  template <typename Consume>
+  void RunBatch(int64_t count, uint64_t seed, uint64_t start, std::optional<int> threads,
+                Consume consume);
+
+  py::list DescribeSites(const analysis::ScenarioOutline& outline,
+                         const analysis::VariationObserver& observer) const;
+  py::list DescribeClasses(const analysis::ScenarioOutline& outline) const;
+  py::dict DescribeWhere(lang::FileId file, uint32_t offset) const;
+
+  ProgramPtr program_;
+  std::string path_;
+  sampling::SampleOptions options_;
+  sampling::SceneSampler sampler_;  // for sample(): its caches persist between calls
+};
+
+// Samples scenes start..start+count-1 on `threads` workers (default: every hardware thread)
+// with the GIL released, handing each to `consume` in index order on this thread. Checks for a
+// pending Python signal (Ctrl-C) between scenes, at most every 100 ms; one stops the batch.
+template <typename Consume>
+void Scenario::RunBatch(int64_t count, uint64_t seed, uint64_t start, std::optional<int> threads,
+                        Consume consume) {
+  if (count < 0) throw py::value_error("n must be >= 0, got " + std::to_string(count));
+  if (threads && (*threads < 1 || *threads > kMaxThreads)) {  // the same bounds as `prs`
+    throw py::value_error("threads must be from 1 to " + std::to_string(kMaxThreads) + ", got " +
+                          std::to_string(*threads));
+  }
+  sampling::BatchOptions options;
+  options.sample = options_;
+  options.seed = seed;
+  options.start = start;
+  options.count = count;
+  options.threads = threads ? *threads : int(std::max(1u, std::thread::hardware_concurrency()));
+  auto next_check = Clock::now() + std::chrono::milliseconds(100);
+  const sampling::BatchCallbacks callbacks{
+      .prepare = {}, .consume = [&](sampling::BatchScene&& scene) {
+        consume(std::move(scene));
+        if (Clock::now() < next_check) return;
+        next_check = Clock::now() + std::chrono::milliseconds(100);
+        py::gil_scoped_acquire gil;
+        if (PyErr_CheckSignals() != 0) throw PythonErrorPending{};
+      }};
+  try {
+    Call([&] {
+      py::gil_scoped_release no_gil;
+      sampling::SampleBatch(*program_, options, callbacks);
+    });
+  } catch (const PythonErrorPending&) {
+    throw py::error_already_set();
+  }
+}
+
+py::dict Scenario::DescribeWhere(lang::FileId file, uint32_t offset) const {
+  py::dict where;
+  if (file >= program_->sources.file_count()) return where;
+  where["file"] = program_->sources.path(file);
+  where["line"] = program_->sources.CalcLineColumn(file, offset).line;
+  return where;
+}
+
+py::list Scenario::DescribeSites(const analysis::ScenarioOutline& outline,
+                                 const analysis::VariationObserver& observer) const {
+  py::list sites;
+  for (const analysis::CreationSite& site : outline.sites) {
+    py::dict entry = DescribeWhere(site.key.first, site.key.second);
+    entry["name"] = site.variable;
+    entry["class"] = site.class_name;
+    entry["position_specifiers"] = site.position_specifiers;
+    entry["position_region"] = site.position_region;
+    const auto found = observer.sites().find(site.key);
+    const bool created = found != observer.sites().end();
+    const analysis::SiteVariation none;
+    const analysis::SiteVariation& variation = created ? found->second : none;
+    // A site absent from some scenes created no object there: its minimum count is 0.
+    entry["min_objects"] = variation.scenes_present < observer.scenes() ? 0 : variation.min_objects;
+    entry["max_objects"] = variation.max_objects;
+    entry["varied"] = variation.varied;
+    sites.append(entry);
+  }
+  return sites;
+}
+
+py::list Scenario::DescribeClasses(const analysis::ScenarioOutline& outline) const {
+  py::list classes;
+  for (const analysis::ClassOutline& cls : outline.classes) {
+    py::dict entry = DescribeWhere(cls.span.file, cls.span.begin);
+    entry["name"] = cls.name;
+    entry["parent"] = cls.parent;
+    entry["own_properties"] = cls.own_properties;
+    classes.append(entry);
+  }
+  return classes;
+}
+
+struct LoadOptions {
+  std::vector<std::string> search_path;
+  std::vector<std::pair<std::string, std::string>> params;
+  int64_t max_attempts = 10'000;
+  bool naive = false;
+};
+
+// Compiles `text` (or the file `path` when `text` is null), raising ScenarioError for the
+// first error, with every error rendered in its text.
+std::unique_ptr<Scenario> Compile(const std::string& path, const std::optional<std::string>& text,
+                                  const LoadOptions& load) {
+  if (load.max_attempts < 1) {
+    throw py::value_error("max_attempts must be >= 1, got " + std::to_string(load.max_attempts));
+  }
+  lang::CompileOptions options;
+  options.search_path = load.search_path;
+  options.param_overrides = load.params;
+  lang::DiagnosticEngine diagnostics;
+  std::shared_ptr<lang::CompiledProgram> program =
+      text ? lang::CompileText(path, *text, options, diagnostics)
+           : lang::CompileFile(path, options, diagnostics);
+  if (diagnostics.has_errors()) {
+    for (const lang::Diagnostic& d : diagnostics.diagnostics()) {
+      if (d.severity != lang::Severity::kError) continue;
+      RaiseScenarioError(d, program->sources, RenderErrors(diagnostics, program->sources), path);
+    }
+  }
+  sampling::SampleOptions sample;
+  sample.max_attempts = load.max_attempts;
+  sample.run.mode = load.naive ? lang::SamplingMode::kNaive : lang::SamplingMode::kRegion;
+  return std::make_unique<Scenario>(std::move(program), path, sample);
+}
+
+}  // namespace
+
+void BindScenario(py::module_& m) {
+  py::class_<Scenario>(m, "Scenario", "A compiled scenario; sample scenes from it.")
+      .def("sample", &Scenario::Sample, py::arg("seed") = 0, py::arg("index") = 0,
+           "Scene `index` of `seed`: the scene `prs sample -s SEED --start INDEX` prints first.\n"
+           "Raises SamplingError when no valid scene is found within max_attempts, and\n"
+           "ScenarioError for errors that show only when the program runs.")
+      .def("sample_batch", &Scenario::SampleBatch, py::arg("n"), py::arg("seed") = 0,
+           py::arg("start") = 0, py::arg("threads") = py::none(),
+           "Scenes start..start+n-1 of `seed`, in index order, sampled on `threads` worker\n"
+           "threads (None: every hardware thread) with the GIL released. The scenes are those\n"
+           "of `prs sample -n N -s SEED --start START`, whatever the thread count. Ctrl-C\n"
+           "stops the batch (KeyboardInterrupt). Errors as for sample().")
+      .def("check", &Scenario::Check, py::arg("n") = 20, py::arg("seed") = 0,
+           py::arg("threads") = py::none(),
+           "The summary `prs check` prints, as a dict: 'file', 'modules', 'seed',\n"
+           "'scenes_observed' (n), 'sites' (one dict per object-creation site: file, line,\n"
+           "name, class, position_specifiers, position_region, min_objects, max_objects,\n"
+           "varied = the properties that differed between the n scenes sampled) and\n"
+           "'classes' (name, parent, file, line, own_properties). n=0 samples nothing.\n"
+           "Raises as sample_batch() when sampling fails.")
+      .def_property_readonly("path", &Scenario::path, "The file (or loads()' name).")
+      .def_property_readonly("max_attempts", &Scenario::max_attempts,
+                             "Attempts per scene before sampling fails.")
+      .def_property_readonly("naive", &Scenario::naive, "True in the naive sampling mode.");
+  m.def(
+      "compile_file",
+      [](const std::string& path, const LoadOptions& options) {
+        return Compile(path, std::nullopt, options);
+      },
+      py::arg("path"), py::arg("options"));
+  m.def(
+      "compile_text",
+      [](const std::string& text, const std::string& name, const LoadOptions& options) {
+        return Compile(name, text, options);
+      },
+      py::arg("text"), py::arg("name"), py::arg("options"));
+  py::class_<LoadOptions>(m, "LoadOptions", "Compile options (internal; see load()).")
+      .def(py::init<>())
+      .def_readwrite("search_path", &LoadOptions::search_path)
+      .def_readwrite("params", &LoadOptions::params)
+      .def_readwrite("max_attempts", &LoadOptions::max_attempts)
+      .def_readwrite("naive", &LoadOptions::naive);
+}
+
+}  // namespace prs::python

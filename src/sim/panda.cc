@@ -1,0 +1,130 @@
+// The Panda arm's kinematics and its MJCF body tree (see panda.h).
+#include "sim/panda.h"
+
+#include <fmt/format.h>
+
+#include <cmath>
+
+namespace prs::sim {
+
+namespace {
+
+constexpr double kPi = 3.14159265358979323846;
+constexpr double kLinkRadius_m = 0.055;
+// Contact groups: the arm touches the world (and the cube) but not itself, as its simple link
+// shapes overlap at the joints.
+constexpr const char* kArmContact = R"(contype="2" conaffinity="1")";
+
+Eigen::Vector3d CalcChildOffset(const PandaDhRow& row) {
+  return {row.a_m, -row.d_m * std::sin(row.alpha_rad), row.d_m * std::cos(row.alpha_rad)};
+}
+
+std::string FormatVector(const Eigen::Vector3d& v) {
+  return fmt::format("{:.9g} {:.9g} {:.9g}", v.x(), v.y(), v.z());
+}
+
+std::string FormatQuat(const Eigen::Quaterniond& q) {
+  return fmt::format("{:.12g} {:.12g} {:.12g} {:.12g}", q.w(), q.x(), q.y(), q.z());
+}
+
+// A capsule from the link's origin to the next joint's origin, or a ball when they coincide.
+std::string WriteLinkGeom(const Eigen::Vector3d& p_next) {
+  if (p_next.norm() < 1e-6) {
+    return fmt::format(R"(<geom type="sphere" size="{}" rgba="0.92 0.92 0.92 1" {}/>)",
+                       kLinkRadius_m, kArmContact);
+  }
+  return fmt::format(R"(<geom type="capsule" fromto="0 0 0 {}" size="{}" rgba="0.92 0.92 0.92 1" {}/>)",
+                     FormatVector(p_next), kLinkRadius_m, kArmContact);
+}
+
+std::string WriteHand(const PandaNames& n) {
+  const Eigen::Quaterniond R_FlangeHand(Eigen::AngleAxisd(-kPi / 4, Eigen::Vector3d::UnitZ()));
+  std::string xml = fmt::format(R"(<body name="{}" quat="{}">)", n.hand(), FormatQuat(R_FlangeHand));
+  xml += fmt::format(R"(<geom type="box" size="0.02 0.1 0.025" pos="0 0 0.025" mass="0.7" )"
+                     R"(rgba="0.92 0.92 0.92 1" {}/>)", kArmContact);
+  xml += fmt::format(R"(<site name="{}" pos="0 0 {}" size="0.005"/>)", n.tcp_site(),
+                     kPandaFlangeToTcp_m);
+  for (int side = 0; side < 2; ++side) {
+    const double sign = side ? -1 : 1;
+    xml += fmt::format(R"(<body name="{0}_body" pos="0 0 0.0584">)"
+                       R"(<joint name="{0}" type="slide" axis="0 {1} 0" range="0 {2}" limited="true" damping="5"/>)"
+                       R"(<geom type="box" size="0.01 0.008 0.026" pos="0 {3} 0.026" mass="0.05" )"
+                       R"(friction="2 0.01 0.001" condim="4" rgba="0.2 0.2 0.2 1" {4}/></body>)",
+                       n.finger_joint(side), sign, kPandaFingerTravel_m, sign * 0.008, kArmContact);
+  }
+  return xml + "</body>";
+}
+
+}  // namespace
+
+const std::array<PandaDhRow, kPandaJoints + 1> kPandaDh = {{
+    {0, 0.333, 0},
+    {0, 0, -kPi / 2},
+    {0, 0.316, kPi / 2},
+    {0.0825, 0, kPi / 2},
+    {-0.0825, 0.384, -kPi / 2},
+    {0, 0, kPi / 2},
+    {0.088, 0, kPi / 2},
+    {0, 0.107, 0},  // flange
+}};
+const PandaJointVector kPandaLowerLimit_rad = {-2.8973, -1.7628, -2.8973, -3.0718, -2.8973, -0.0175, -2.8973};
+const PandaJointVector kPandaUpperLimit_rad = {2.8973, 1.7628, 2.8973, -0.0698, 2.8973, 3.7525, 2.8973};
+const PandaJointVector kPandaReadyPose_rad = {0, -kPi / 4, 0, -3 * kPi / 4, 0, kPi / 2, kPi / 4};
+
+std::string WritePandaBody(const PandaNames& n, const Eigen::Vector3d& p_WBase,
+                           const Eigen::Quaterniond& R_WBase) {
+  std::string xml = fmt::format(R"(<body name="{}" pos="{}" quat="{}">)", n.base(),
+                                FormatVector(p_WBase), FormatQuat(R_WBase));
+  xml += fmt::format(R"(<geom type="cylinder" size="0.06 0.05" pos="0 0 0.05" {}/>)", kArmContact);
+  for (int i = 0; i < kPandaJoints; ++i) {
+    const PandaDhRow& row = kPandaDh[i];
+    const Eigen::Quaterniond R_parent_child(Eigen::AngleAxisd(row.alpha_rad, Eigen::Vector3d::UnitX()));
+    const double damping = i < 4 ? 40 : 10;
+    xml += fmt::format(R"(<body name="{}link{}" pos="{}" quat="{}">)", n.prefix, i + 1,
+                       FormatVector(CalcChildOffset(row)), FormatQuat(R_parent_child));
+    xml += fmt::format(R"(<joint name="{}" axis="0 0 1" range="{} {}" limited="true" )"
+                       R"(damping="{}" armature="0.1" ref="0"/>)",
+                       n.joint(i), kPandaLowerLimit_rad[i], kPandaUpperLimit_rad[i], damping);
+    // The geometry runs to the next frame's origin, expressed in this frame.
+    xml += WriteLinkGeom(CalcChildOffset(kPandaDh[i + 1]));
+  }
+  // The flange: fixed to link 7.
+  xml += fmt::format(R"(<body name="{}flange" pos="{}">)", n.prefix, FormatVector(CalcChildOffset(kPandaDh[7])));
+  xml += WriteHand(n) + "</body>";
+  for (int i = 0; i < kPandaJoints; ++i) xml += "</body>";
+  return xml + "</body>";
+}
+
+std::string WritePandaEqualities(const PandaNames& n) {
+  return fmt::format(R"(<joint joint1="{}" joint2="{}" polycoef="0 1 0 0 0"/>)", n.finger_joint(1),
+                     n.finger_joint(0));
+}
+
+std::string WritePandaActuators(const PandaNames& n) {
+  std::string xml;
+  for (int i = 0; i < kPandaJoints; ++i) {
+    const double kp = i < 4 ? 2000 : 500;
+    xml += fmt::format(R"(<position name="{}" joint="{}" kp="{}" ctrlrange="{} {}" ctrllimited="true"/>)",
+                       n.actuator(i), n.joint(i), kp, kPandaLowerLimit_rad[i], kPandaUpperLimit_rad[i]);
+  }
+  // About 70 N of grip per finger at full closing error, the Panda hand's continuous force.
+  xml += fmt::format(R"(<position name="{}" joint="{}" kp="1750" ctrlrange="0 {}" ctrllimited="true" )"
+                     R"(forcerange="-70 70" forcelimited="true"/>)",
+                     n.gripper_actuator(), n.finger_joint(0), kPandaFingerTravel_m);
+  return xml;
+}
+
+Eigen::Isometry3d CalcPandaTcpPose(const PandaJointVector& q_rad) {
+  Eigen::Isometry3d X = Eigen::Isometry3d::Identity();
+  for (int i = 0; i <= kPandaJoints; ++i) {
+    const PandaDhRow& row = kPandaDh[i];
+    const double q = i < kPandaJoints ? q_rad[i] : 0.0;
+    X = X * Eigen::AngleAxisd(row.alpha_rad, Eigen::Vector3d::UnitX()) *
+        Eigen::Translation3d(row.a_m, 0, 0) * Eigen::AngleAxisd(q, Eigen::Vector3d::UnitZ()) *
+        Eigen::Translation3d(0, 0, row.d_m);
+  }
+  return X * Eigen::AngleAxisd(-kPi / 4, Eigen::Vector3d::UnitZ()) *
+         Eigen::Translation3d(0, 0, kPandaFlangeToTcp_m);
+}
+
+}  // namespace prs::sim
