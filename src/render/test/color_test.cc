@@ -19,6 +19,8 @@ TEST(ColorTest, NamesAreCaseInsensitiveAndGreySpelledBothWays) {
   EXPECT_GT((*blue)[2], (*blue)[0] + 0.4f);
   EXPECT_EQ(ParseColorText("grey"), ParseColorText("GRAY"));
   EXPECT_NE(ParseColorText("red"), ParseColorText("green"));
+  EXPECT_TRUE(ParseColorText("Navy"));
+  EXPECT_TRUE(ParseColorText("darkgray"));
 }
 
 TEST(ColorTest, GreyLevelFromTextOrNumber) {
