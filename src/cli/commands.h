@@ -27,5 +27,6 @@ CommandRunner ConfigureCheckCommand(CLI::App& command);
 CommandRunner ConfigureStatsCommand(CLI::App& command);
 CommandRunner ConfigureViewCommand(CLI::App& command);
 CommandRunner ConfigureExportCommand(CLI::App& command);
+CommandRunner ConfigureRenderCommand(CLI::App& command);
 
 }  // namespace prs::cli
