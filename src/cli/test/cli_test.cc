@@ -5,8 +5,6 @@
 
 #include "cli/test/prs_test_fixture.h"
 
-#include "cli/test/prs_runner.h"
-
 namespace prs::cli {
 namespace {
 
