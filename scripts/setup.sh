@@ -12,7 +12,7 @@ packages=(
   libcli11-dev           # the prs command line
   nlohmann-json3-dev     # scene JSON output and parsing
   clang libclang-rt-14-dev  # libFuzzer for the front-end fuzz target
-  libmujoco-dev          # physics for the simulated case study (src/sim)
+  libmujoco-dev          # physics for the simulated case study (src/sim), and prs render
   libcpp-httplib-dev     # prs view's local HTTP server
   chromium               # prs view's end-to-end test (headless, driven by puppeteer-core)
   pybind11-dev python3-dev python3-numpy  # the Python package (python/)
@@ -20,6 +20,9 @@ packages=(
   python3-pytest python3-matplotlib  # Python tests and the plotting example
   libtinygltf-dev        # prs export: writes glTF; tests read it back
   liburdfdom-dev libsdformat-dev  # prs export tests: URDF and SDF read by their own parsers
+  libegl-dev libegl-mesa0 libgl1-mesa-dri  # prs render: MuJoCo's renderer on EGL with
+                         # Mesa's software rasteriser (llvmpipe), no GPU or display
+  libpng-dev             # prs render: PNG files
   python3                # prs test's example controller (examples/controllers/reach_check.py) in the tests
 )
 # prs view bundles three.js with npm at build time; keep a Node.js that is already installed

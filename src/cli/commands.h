@@ -27,6 +27,7 @@ CommandRunner ConfigureCheckCommand(CLI::App& command);
 CommandRunner ConfigureStatsCommand(CLI::App& command);
 CommandRunner ConfigureViewCommand(CLI::App& command);
 CommandRunner ConfigureExportCommand(CLI::App& command);
+CommandRunner ConfigureRenderCommand(CLI::App& command);
 CommandRunner ConfigureTestCommand(CLI::App& command);
 
 }  // namespace prs::cli

@@ -44,7 +44,6 @@ struct SamplingArgs {
 void AddScenarioOptions(CLI::App& command, ScenarioArgs& args);
 /// Adds -s, --threads, --naive and --max-attempts to `command`.
 void AddSamplingOptions(CLI::App& command, SamplingArgs& args);
-
 /// Which scenes a command makes: -n N (at least `min_count`) and --start I.
 struct SceneRangeArgs {
   int64_t count = 1;

@@ -1,8 +1,6 @@
-// Draws failing scenes from their saved JSON lines with src/render. PRS_HAVE_RENDER is set by
-// src/cli/CMakeLists.txt when the prs_render library is part of the build; else nothing is drawn.
+// Draws failing scenes from their saved JSON lines with src/render, one renderer on the calling
+// thread.
 #include "cli/failure_pictures.h"
-
-#if PRS_HAVE_RENDER
 
 #include <fmt/format.h>
 
@@ -15,8 +13,6 @@
 #include "render/scene_input.h"
 
 namespace prs::cli {
-
-bool CanDrawFailurePictures() { return true; }
 
 int64_t DrawFailurePictures(const std::vector<harness::EpisodeRecord>& records) {
   std::unique_ptr<render::Renderer> renderer;  // made only when there is a failure to draw
@@ -41,15 +37,3 @@ int64_t DrawFailurePictures(const std::vector<harness::EpisodeRecord>& records) 
 }
 
 }  // namespace prs::cli
-
-#else
-
-namespace prs::cli {
-
-bool CanDrawFailurePictures() { return false; }
-
-int64_t DrawFailurePictures(const std::vector<harness::EpisodeRecord>&) { return 0; }
-
-}  // namespace prs::cli
-
-#endif

@@ -1,5 +1,5 @@
 // Pictures of the failing scenes that `prs test --save-failures DIR` saved: STEM.png beside
-// each STEM.json, drawn by src/render (`prs render`'s library) when it is part of the build.
+// each STEM.json, drawn by src/render (`prs render`'s library).
 #pragma once
 
 #include <cstdint>
@@ -9,12 +9,9 @@
 
 namespace prs::cli {
 
-/// True when this build links the renderer, so that DrawFailurePictures draws.
-bool CanDrawFailurePictures();
-
 /// Draws STEM.png (640x480, overview, captioned with seed, index and outcome) for each record
 /// whose scene was saved as STEM.json, one after another with one renderer on this thread.
-/// Returns how many were drawn (0 without the renderer). Throws std::runtime_error when no
+/// Returns how many were drawn. Throws std::runtime_error when no
 /// OpenGL context can be made or a file cannot be read or written.
 int64_t DrawFailurePictures(const std::vector<harness::EpisodeRecord>& records);
 

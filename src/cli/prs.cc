@@ -21,6 +21,7 @@ const std::vector<Command>& CommandTable() {
       {"stats", "sample scenes and report acceptance, rejections and speed", ConfigureStatsCommand},
       {"view", "look at scenes in a local web viewer (or write one HTML file)", ConfigureViewCommand},
       {"export", "write scenes as MJCF, URDF, SDF, USD or glTF files", ConfigureExportCommand},
+      {"render", "draw scenes as PNG pictures (offscreen, no display needed)", ConfigureRenderCommand},
       {"test", "run a controller in sampled scenes, tabulate outcomes", ConfigureTestCommand},
   };
   return kCommands;

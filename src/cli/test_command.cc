@@ -121,8 +121,7 @@ bool IsEveryOutcome(const std::vector<harness::EpisodeRecord>& records, const st
   });
 }
 
-// After the table: a picture beside each saved failing scene (when the renderer is built in),
-// and where they are.
+// After the table: a picture beside each saved failing scene, and where they are.
 int ReportSavedFailures(const harness::RunSummary& summary, const TestArgs& args) {
   const int64_t saved =
       std::count_if(summary.records.begin(), summary.records.end(),
@@ -136,7 +135,7 @@ int ReportSavedFailures(const harness::RunSummary& summary, const TestArgs& args
   }
   if (!args.quiet && saved > 0) {
     PrintNote(fmt::format("{} saved in {} ({})", FormatCount(saved, "failing scene"),
-                          args.save_failures_dir, drawn > 0 ? "JSON and PNG" : "JSON"));
+                          args.save_failures_dir, drawn == saved ? "JSON and PNG" : "JSON"));
   }
   return kExitSuccess;
 }

@@ -1,24 +1,13 @@
 // End-to-end tests of the built `prs` binary: every exit code with its located message on
 // stderr, JSON Lines on stdout and in -o files, byte-identical output for any thread count
 // and any split of the index range, `prs check`'s outline, `prs stats --json`, and SIGTERM.
-#include <gtest/gtest.h>
-#include <sys/wait.h>
-#include <unistd.h>
-
-#include <cstdlib>
-#include <filesystem>
-#include <fstream>
 #include <nlohmann/json.hpp>
-#include <sstream>
-#include <string>
-#include <vector>
 
-#include "cli/test/prs_runner.h"
+#include "cli/test/prs_test_fixture.h"
 
 namespace prs::cli {
 namespace {
 
-namespace fs = std::filesystem;
 using nlohmann::json;
 
 std::vector<std::string> SplitLines(const std::string& text) {

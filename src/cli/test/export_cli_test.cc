@@ -4,7 +4,7 @@
 #include <fmt/format.h>
 #include <gtest/gtest.h>
 
-#include "cli/test/prs_runner.h"
+#include "cli/test/prs_test_fixture.h"
 
 namespace prs::cli {
 namespace {

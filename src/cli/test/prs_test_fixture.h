@@ -1,5 +1,5 @@
-// Test helper for end-to-end tests of the built `prs` binary: a fresh directory per test, files
-// written into it, and `prs ARGS...` run through the shell with stdout and stderr captured.
+// The harness of the end-to-end tests of the built `prs` binary: a fresh directory per test,
+// and Run(), which runs `prs ARGS...` and captures its exit code, stdout and stderr.
 #pragma once
 
 #include <gtest/gtest.h>

@@ -1,0 +1,26 @@
+// A headless OpenGL context from EGL on Mesa's software rasteriser (llvmpipe): no GPU, no X
+// display, no window. Internal to src/render; docs/render.md says why EGL and not OSMesa.
+#pragma once
+
+namespace prs::render::internal {
+
+/// Owns an EGL display and a desktop-OpenGL context, current on the creating thread. The
+/// context has no window surface: MuJoCo draws into its own offscreen framebuffer.
+class EglContext {
+ public:
+  /// Throws std::runtime_error naming the failed EGL step and its error code.
+  EglContext();
+  ~EglContext();
+  EglContext(const EglContext&) = delete;
+  EglContext& operator=(const EglContext&) = delete;
+
+  /// Makes the context current on the calling thread again.
+  void MakeCurrent() const;
+
+ private:
+  void* display_ = nullptr;
+  void* context_ = nullptr;
+  void* surface_ = nullptr;  // a 1x1 pbuffer only when surfaceless contexts are refused
+};
+
+}  // namespace prs::render::internal

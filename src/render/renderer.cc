@@ -1,0 +1,161 @@
+// Renderer: the scene's objects as MuJoCo decoration geoms over a checker floor, drawn by
+// mjr_render into MuJoCo's offscreen framebuffer and read back as RGB and metric depth.
+#include <mujoco/mujoco.h>
+
+#include <algorithm>
+#include <cmath>
+#include <limits>
+#include <stdexcept>
+
+#include "render/egl_context.h"
+#include "render/mujoco_model.h"
+#include "render/render.h"
+#include "render/scene_geoms.h"
+
+namespace prs::render {
+
+struct Renderer::State {
+  internal::EglContext egl;  // first: MuJoCo's context needs a current OpenGL context
+  mjModel* model = nullptr;
+  mjData* data = nullptr;
+  mjvScene scene;
+  mjvOption option;
+  mjvCamera camera;
+  mjrContext context;
+  int buffer_width = 0, buffer_height = 0;
+  int floor_texture = -1;
+
+  State() {
+    internal::InstallMujocoMessageHandlers();
+    model = internal::LoadRenderModel();
+    data = mj_makeData(model);
+    mj_forward(model, data);  // the lights' world positions and directions
+    mjv_defaultScene(&scene);
+    mjv_defaultOption(&option);
+    mjv_defaultFreeCamera(model, &camera);
+    mjr_defaultContext(&context);
+    floor_texture = model->mat_texid[mj_name2id(model, mjOBJ_MATERIAL, "floor")];
+  }
+  ~State() {
+    mjr_freeContext(&context);
+    mjv_freeScene(&scene);
+    mj_deleteData(data);
+    mj_deleteModel(model);
+  }
+
+  // MuJoCo 2.2 sizes its offscreen buffer once, from the model, when the context is made.
+  void EnsureBuffer(int width, int height) {
+    if (width == buffer_width && height == buffer_height) return;
+    mjr_freeContext(&context);
+    mjr_defaultContext(&context);
+    model->vis.global.offwidth = width;
+    model->vis.global.offheight = height;
+    mjr_makeContext(model, &context, height >= 600 ? mjFONTSCALE_150 : mjFONTSCALE_100);
+    mjr_setBuffer(mjFB_OFFSCREEN, &context);
+    if (context.currentBuffer != mjFB_OFFSCREEN)
+      throw std::runtime_error("MuJoCo could not make its offscreen framebuffer");
+    buffer_width = width;
+    buffer_height = height;
+  }
+
+  void EnsureGeomCapacity(int count) {
+    if (scene.maxgeom >= count) return;
+    mjv_freeScene(&scene);
+    mjv_makeScene(model, &scene, std::max(count, 2 * scene.maxgeom));
+  }
+};
+
+namespace {
+
+void SetGlCamera(mjvGLCamera& gl, const CameraPose& pose, double fovy_deg) {
+  for (int i = 0; i < 3; ++i) {
+    gl.pos[i] = static_cast<float>(pose.p_WC[i]);
+    gl.forward[i] = static_cast<float>(pose.forward_W[i]);
+    gl.up[i] = static_cast<float>(pose.up_W[i]);
+  }
+  const double half_height = pose.near_m * std::tan(fovy_deg * M_PI / 360.0);
+  gl.frustum_center = 0;
+  gl.frustum_top = static_cast<float>(half_height);
+  gl.frustum_bottom = static_cast<float>(-half_height);
+  gl.frustum_near = static_cast<float>(pose.near_m);
+  gl.frustum_far = static_cast<float>(pose.far_m);
+}
+
+// mjv_updateScene placed the camera and lights for MuJoCo's own free camera: put the camera
+// (both stereo eyes) at our pose, the headlight with it, and the sun's shadow over the scene.
+void PlaceCameraAndLights(mjvScene& scene, mjrContext& context, const CameraPose& pose,
+                          const SceneExtent& extent, double fovy_deg) {
+  for (mjvGLCamera& gl : scene.camera) SetGlCamera(gl, pose, fovy_deg);
+  for (int i = 0; i < scene.nlight; ++i) {
+    mjvLight& light = scene.lights[i];
+    const Eigen::Vector3d dir_W(light.dir[0], light.dir[1], light.dir[2]);
+    // MuJoCo clips the sun's shadow map to the camera's [near, far] as seen from the light.
+    const double light_distance_m = pose.near_m + 1.5 * extent.radius_m;
+    const Eigen::Vector3d p_W =
+        light.headlight ? pose.p_WC : extent.centre_W - light_distance_m * dir_W.normalized();
+    for (int k = 0; k < 3; ++k) light.pos[k] = static_cast<float>(p_W[k]);
+    if (light.headlight)
+      for (int k = 0; k < 3; ++k) light.dir[k] = static_cast<float>(pose.forward_W[k]);
+  }
+  context.shadowClip = static_cast<float>(1.5 * extent.radius_m);
+}
+
+// OpenGL rows run bottom-up; pictures run top-down.
+template <typename T>
+void FlipRows(std::vector<T>& pixels, int width, int height, int channels) {
+  const size_t row = static_cast<size_t>(width) * channels;
+  for (int y = 0; y < height / 2; ++y) {
+    std::swap_ranges(pixels.begin() + y * row, pixels.begin() + (y + 1) * row,
+                     pixels.begin() + (height - 1 - y) * row);
+  }
+}
+
+// Depth-buffer values d in [0, 1] to distance along the view axis, as MuJoCo's docs give it:
+// near / (1 - d (1 - near / far)). The far plane itself (the sky) is "nothing seen".
+void LinearizeDepth(std::vector<float>& depth, const CameraPose& pose) {
+  const double near = pose.near_m, far = pose.far_m;
+  for (float& d : depth) {
+    d = d >= 1.0f ? std::numeric_limits<float>::infinity()
+                  : static_cast<float>(near / (1.0 - d * (1.0 - near / far)));
+  }
+}
+
+}  // namespace
+
+Renderer::Renderer() : state_(std::make_unique<State>()) {}
+Renderer::~Renderer() = default;
+
+Image Renderer::Render(const RenderScene& scene, const RenderOptions& options, DepthImage* depth) {
+  const CameraPose pose = CalcViewPose(scene, options);  // may throw: check before drawing
+  State& s = *state_;
+  s.egl.MakeCurrent();
+  s.EnsureBuffer(options.width, options.height);
+  s.EnsureGeomCapacity(CountSceneGeoms(scene));  // remakes the scene: before updating it
+  mjv_updateScene(s.model, s.data, &s.option, nullptr, &s.camera, mjCAT_ALL, &s.scene);
+  const SceneExtent extent = CalcSceneExtent(scene);
+  s.scene.ngeom = 0;
+  const RenderObject* viewpoint = options.view.kind == ViewKind::kCamera
+                                      ? &FindViewpointObject(scene, options.view.camera_name)
+                                      : nullptr;  // a camera does not see its own body
+  AddSceneGeoms(scene, viewpoint, extent, s.floor_texture, options.camera_fovy_deg, s.model,
+                s.scene);
+  PlaceCameraAndLights(s.scene, s.context, pose, extent, options.camera_fovy_deg);
+  const mjrRect viewport = {0, 0, options.width, options.height};
+  mjr_render(viewport, &s.scene, &s.context);
+  if (!scene.caption.empty())
+    mjr_overlay(mjFONT_NORMAL, mjGRID_TOPLEFT, viewport, scene.caption.c_str(), nullptr,
+                &s.context);
+  Image image{options.width, options.height,
+              std::vector<uint8_t>(size_t(options.width) * options.height * 3)};
+  std::vector<float> raw_depth(depth ? size_t(options.width) * options.height : 0);
+  mjr_readPixels(image.rgb.data(), depth ? raw_depth.data() : nullptr, viewport, &s.context);
+  FlipRows(image.rgb, options.width, options.height, 3);
+  if (depth) {
+    FlipRows(raw_depth, options.width, options.height, 1);
+    LinearizeDepth(raw_depth, pose);
+    *depth = DepthImage{options.width, options.height, std::move(raw_depth)};
+  }
+  return image;
+}
+
+}  // namespace prs::render

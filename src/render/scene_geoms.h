@@ -1,0 +1,34 @@
+// A RenderScene as MuJoCo decoration geoms: boxes, cylinders, point markers, camera bodies
+// with their view frustum, the workspace outline and the floor. Internal to src/render.
+#pragma once
+
+#include <mujoco/mujoco.h>
+
+#include "render/render.h"
+
+namespace prs::render {
+
+/// The sphere around the objects, and the floor height (z = 0, or lower under objects below).
+struct SceneExtent {
+  Eigen::Vector3d centre_W = Eigen::Vector3d::Zero();
+  double radius_m = 1.0;
+  double floor_z_m = 0.0;
+};
+
+SceneExtent CalcSceneExtent(const RenderScene& scene);
+
+/// The object a camera view looks from: by name (variable or "Class#index"), else by class
+/// when exactly one object has that class. Throws std::invalid_argument listing the cameras.
+const RenderObject& FindViewpointObject(const RenderScene& scene, const std::string& name);
+
+/// How many geoms AddSceneGeoms adds for `scene`.
+int CountSceneGeoms(const RenderScene& scene);
+
+/// Appends the scene's geoms to `out` (which must have room: CountSceneGeoms), except those of
+/// `viewpoint` (the camera looked through; may be null). The floor uses texture
+/// `floor_texture` of `model`; camera frusta open at `fovy_deg`.
+void AddSceneGeoms(const RenderScene& scene, const RenderObject* viewpoint,
+                   const SceneExtent& extent, int floor_texture, double fovy_deg,
+                   const mjModel* model, mjvScene& out);
+
+}  // namespace prs::render

@@ -1,0 +1,193 @@
+// Scenes to RenderScene: from the sampler's lang::Scene or from a JSON line, through one
+// classification of shapes (box, cylinder, point, camera) and one colour parser.
+#include "render/scene_input.h"
+
+#include <algorithm>
+#include <cctype>
+#include <nlohmann/json.hpp>
+#include <optional>
+#include <stdexcept>
+
+#include "lang/program.h"
+#include "render/color.h"
+
+namespace prs::render {
+namespace {
+
+bool ContainsCamera(std::string text) {
+  std::transform(text.begin(), text.end(), text.begin(),
+                 [](unsigned char c) { return static_cast<char>(std::tolower(c)); });
+  return text.find("camera") != std::string::npos;
+}
+
+// The properties that decide how an object is drawn, as text from either source.
+struct DrawProperties {
+  std::string model_name;
+  std::string shape_type;
+  std::optional<Rgba> color;
+  std::string color_text;  // what the scene said, for the unknown-colour note
+};
+
+ObjectShape ClassifyShape(const RenderObject& object, const DrawProperties& properties) {
+  if (ContainsCamera(object.class_name) || ContainsCamera(properties.model_name))
+    return ObjectShape::kCamera;
+  if (object.dimensions.isZero()) return ObjectShape::kPoint;
+  if (properties.shape_type == "cylinder") return ObjectShape::kCylinder;
+  return ObjectShape::kBox;
+}
+
+void ApplyProperties(const DrawProperties& properties, RenderObject& object,
+                     std::vector<std::string>* unknown_colors) {
+  object.shape = ClassifyShape(object, properties);
+  if (object.shape == ObjectShape::kCamera) object.color = {0.18f, 0.18f, 0.2f, 1.0f};
+  if (properties.color) {
+    object.color = *properties.color;
+  } else if (!properties.color_text.empty() && unknown_colors) {
+    unknown_colors->push_back(properties.color_text);
+  }
+}
+
+std::optional<std::vector<double>> NumbersOf(const std::vector<lang::Value>& elements) {
+  std::vector<double> numbers;
+  for (const lang::Value& element : elements) {
+    if (!element.Is<double>()) return std::nullopt;
+    numbers.push_back(element.As<double>());
+  }
+  return numbers;
+}
+
+// A `color` value of the language: a string, a number, a vector, a tuple or a list.
+std::optional<Rgba> ParseColorValue(const lang::Value& value) {
+  if (value.Is<lang::StringPtr>()) return ParseColorText(*value.As<lang::StringPtr>());
+  if (value.Is<double>()) return ParseColorNumbers({value.As<double>()});
+  if (value.Is<Eigen::Vector3d>()) {
+    const Eigen::Vector3d& v = value.As<Eigen::Vector3d>();
+    return ParseColorNumbers({v.x(), v.y(), v.z()});
+  }
+  std::optional<std::vector<double>> numbers;
+  if (value.Is<std::shared_ptr<lang::TupleData>>())
+    numbers = NumbersOf(value.As<std::shared_ptr<lang::TupleData>>()->elements);
+  if (value.Is<std::shared_ptr<lang::ListData>>())
+    numbers = NumbersOf(value.As<std::shared_ptr<lang::ListData>>()->elements);
+  return numbers ? ParseColorNumbers(*numbers) : std::nullopt;
+}
+
+DrawProperties ReadDrawProperties(const lang::SceneObject& source) {
+  DrawProperties properties;
+  for (const auto& [name, value] : source.properties) {
+    const bool is_string = value.Is<lang::StringPtr>();
+    if (name == "model_name" && is_string) properties.model_name = *value.As<lang::StringPtr>();
+    if (name == "shape_type" && is_string) properties.shape_type = *value.As<lang::StringPtr>();
+    if (name == "color") {
+      properties.color = ParseColorValue(value);
+      properties.color_text = lang::Repr(value);
+    }
+  }
+  return properties;
+}
+
+[[noreturn]] void FailJson(size_t object_index, const std::string& what) {
+  throw std::invalid_argument("object " + std::to_string(object_index) + ": " + what);
+}
+
+Eigen::Vector3d ReadVector3(const nlohmann::json& object, const char* key, size_t index) {
+  const auto it = object.find(key);
+  if (it == object.end() || !it->is_array() || it->size() != 3)
+    FailJson(index, std::string("'") + key + "' is not an array of 3 numbers");
+  Eigen::Vector3d v;
+  for (int i = 0; i < 3; ++i) {
+    if (!(*it)[i].is_number()) FailJson(index, std::string("'") + key + "' holds a non-number");
+    v[i] = (*it)[i].get<double>();
+  }
+  return v;
+}
+
+Eigen::Quaterniond ReadQuaternion(const nlohmann::json& object, size_t index) {
+  const auto& orientation = object.value("orientation", nlohmann::json::object());
+  const auto it = orientation.find("quaternion");
+  if (it == orientation.end() || !it->is_array() || it->size() != 4 ||
+      !std::all_of(it->begin(), it->end(), [](const auto& x) { return x.is_number(); }))
+    FailJson(index, "'orientation.quaternion' is not an array of 4 numbers [w, x, y, z]");
+  Eigen::Quaterniond q((*it)[0].get<double>(), (*it)[1].get<double>(), (*it)[2].get<double>(),
+                       (*it)[3].get<double>());
+  if (q.norm() < 1e-9) FailJson(index, "'orientation.quaternion' is zero");
+  return q.normalized();
+}
+
+std::optional<Rgba> ParseColorJson(const nlohmann::json& color) {
+  if (color.is_string()) return ParseColorText(color.get<std::string>());
+  if (color.is_number()) return ParseColorNumbers({color.get<double>()});
+  if (!color.is_array()) return std::nullopt;
+  std::vector<double> numbers;
+  for (const auto& x : color) {
+    if (!x.is_number()) return std::nullopt;
+    numbers.push_back(x.get<double>());
+  }
+  return ParseColorNumbers(numbers);
+}
+
+DrawProperties ReadDrawProperties(const nlohmann::json& object) {
+  DrawProperties properties;
+  const auto& json = object.value("properties", nlohmann::json::object());
+  if (!json.is_object()) return properties;
+  if (json.contains("model_name") && json["model_name"].is_string())
+    properties.model_name = json["model_name"].get<std::string>();
+  if (json.contains("shape_type") && json["shape_type"].is_string())
+    properties.shape_type = json["shape_type"].get<std::string>();
+  if (json.contains("color")) {
+    properties.color = ParseColorJson(json["color"]);
+    properties.color_text = json["color"].dump();
+  }
+  return properties;
+}
+
+RenderObject ReadJsonObject(const nlohmann::json& json, size_t index,
+                            std::vector<std::string>* unknown_colors) {
+  if (!json.is_object()) FailJson(index, "is not a JSON object");
+  RenderObject object;
+  object.class_name = json.value("class", std::string("Object"));
+  const auto name = json.find("name");
+  object.name = name != json.end() && name->is_string()
+                    ? name->get<std::string>()
+                    : object.class_name + "#" + std::to_string(index);
+  object.p_WO = ReadVector3(json, "position", index);
+  object.R_WO = ReadQuaternion(json, index);
+  object.dimensions = ReadVector3(json, "dimensions", index);
+  ApplyProperties(ReadDrawProperties(json), object, unknown_colors);
+  return object;
+}
+
+}  // namespace
+
+RenderScene MakeRenderScene(const lang::Scene& scene, std::vector<std::string>* unknown_colors) {
+  RenderScene result;
+  for (size_t i = 0; i < scene.objects.size(); ++i) {
+    const lang::SceneObject& source = scene.objects[i];
+    RenderObject object;
+    object.name = source.DisplayName(static_cast<int>(i));
+    object.class_name = source.cls ? source.cls->name : "Object";
+    object.p_WO = source.p_WO;
+    object.R_WO = source.R_WO.normalized();
+    object.dimensions = source.dimensions;
+    ApplyProperties(ReadDrawProperties(source), object, unknown_colors);
+    result.objects.push_back(std::move(object));
+  }
+  if (scene.workspace) result.workspace_edges = CalcOutlineEdges(*scene.workspace);
+  return result;
+}
+
+RenderScene ParseRenderSceneJson(std::string_view line, std::vector<std::string>* unknown_colors) {
+  const nlohmann::json json = nlohmann::json::parse(line, nullptr, /*allow_exceptions=*/false);
+  if (json.is_discarded()) throw std::invalid_argument("not valid JSON");
+  if (!json.is_object() || json.value("format", std::string()) != "prs-scene/1")
+    throw std::invalid_argument("not a prs-scene/1 object (no \"format\": \"prs-scene/1\")");
+  const auto objects = json.find("objects");
+  if (objects == json.end() || !objects->is_array())
+    throw std::invalid_argument("'objects' is not an array");
+  RenderScene scene;
+  for (size_t i = 0; i < objects->size(); ++i)
+    scene.objects.push_back(ReadJsonObject((*objects)[i], i, unknown_colors));
+  return scene;
+}
+
+}  // namespace prs::render

@@ -1,0 +1,203 @@
+// Rendering end to end on the software EGL context: size, content, where a known object lands,
+// camera depth against geometry, grids, PNG files, and view/size parsing.
+#include "render/render.h"
+
+#include <gtest/gtest.h>
+#include <png.h>
+
+#include <cmath>
+#include <filesystem>
+
+namespace prs::render {
+namespace {
+
+RenderObject MakeBox(const std::string& name, const Eigen::Vector3d& p_WO,
+                     const Eigen::Vector3d& dimensions, const Rgba& color) {
+  RenderObject o;
+  o.name = name;
+  o.class_name = name;
+  o.p_WO = p_WO;
+  o.dimensions = dimensions;
+  o.color = color;
+  return o;
+}
+
+// A grey table top (2 x 1.2 x 0.1 m, top at z = 0.5) with a red cube off its centre.
+RenderScene MakeTableScene() {
+  RenderScene scene;
+  scene.objects.push_back(MakeBox("table", {0, 0, 0.45}, {2, 1.2, 0.1}, {0.5f, 0.5f, 0.5f, 1}));
+  scene.objects.push_back(
+      MakeBox("cube", {0.6, 0.3, 0.55}, {0.1, 0.1, 0.1}, {0.9f, 0.05f, 0.05f, 1}));
+  return scene;
+}
+
+// A camera 2 m above the floor looking straight down (+y onto -z: -90 degrees about x).
+RenderObject MakeDownCamera() {
+  RenderObject camera = MakeBox("cam", {0.1, -0.1, 2.0}, {0.05, 0.05, 0.05}, {0.2f, 0.2f, 0.2f, 1});
+  camera.shape = ObjectShape::kCamera;
+  camera.R_WO = Eigen::AngleAxisd(-M_PI / 2, Eigen::Vector3d::UnitX());
+  return camera;
+}
+
+RenderScene MakeTableSceneWithCamera() {
+  RenderScene scene = MakeTableScene();
+  scene.objects.push_back(MakeDownCamera());
+  return scene;
+}
+
+Renderer& SharedRenderer() {
+  static Renderer renderer;  // one EGL context for the whole test program
+  return renderer;
+}
+
+// Pixel (column, row from the top) where a world point appears under `pose`.
+Eigen::Vector2d Project(const Eigen::Vector3d& p_W, const CameraPose& pose,
+                        const RenderOptions& options) {
+  const Eigen::Vector3d q = p_W - pose.p_WC;
+  const Eigen::Vector3d right_W = pose.forward_W.cross(pose.up_W);
+  const double depth = q.dot(pose.forward_W);
+  const double tan_y = std::tan(options.camera_fovy_deg * M_PI / 360.0);
+  const double tan_x = tan_y * options.width / options.height;
+  const double x_ndc = q.dot(right_W) / (depth * tan_x);
+  const double y_ndc = q.dot(pose.up_W) / (depth * tan_y);
+  return {(x_ndc + 1) / 2 * options.width, (1 - y_ndc) / 2 * options.height};
+}
+
+std::array<int, 3> PixelAt(const Image& image, int column, int row) {
+  const uint8_t* p = &image.rgb[(size_t(row) * image.width + column) * 3];
+  return {p[0], p[1], p[2]};
+}
+
+bool IsRed(const std::array<int, 3>& rgb) { return rgb[0] > 120 && rgb[1] < 60 && rgb[2] < 60; }
+
+// The red cube's centre (top face at z = 0.6) is red in the picture, in its upper right
+// quadrant: views from above show world +x to the right and +y upwards.
+void ExpectCubeRedAndUpRight(const Image& image, const CameraPose& pose,
+                             const RenderOptions& options) {
+  const Eigen::Vector2d at = Project({0.6, 0.3, 0.6}, pose, options);
+  EXPECT_TRUE(IsRed(PixelAt(image, int(at.x()), int(at.y()))));
+  EXPECT_GT(at.x(), options.width / 2.0);
+  EXPECT_LT(at.y(), options.height / 2.0);
+}
+
+TEST(RenderTest, ImageHasTheRequestedSizeAndIsNotBlank) {
+  RenderOptions options;
+  options.width = 320;
+  options.height = 200;
+  const Image image = SharedRenderer().Render(MakeTableScene(), options);
+  ASSERT_EQ(image.width, 320);
+  ASSERT_EQ(image.height, 200);
+  ASSERT_EQ(image.rgb.size(), 320u * 200u * 3u);
+  int darkest = 255, brightest = 0;
+  for (uint8_t v : image.rgb) {
+    darkest = std::min<int>(darkest, v);
+    brightest = std::max<int>(brightest, v);
+  }
+  EXPECT_GT(brightest - darkest, 100);
+}
+
+TEST(RenderTest, RedCubeSeenFromTopAppearsAtItsProjectedCentre) {
+  RenderOptions options;
+  options.view = ParseView("top");
+  const RenderScene scene = MakeTableScene();
+  const Image image = SharedRenderer().Render(scene, options);
+  const CameraPose pose = CalcViewPose(scene, options);
+  ExpectCubeRedAndUpRight(image, pose, options);
+  // And nowhere near the opposite corner of the table.
+  const Eigen::Vector2d away = Project({-0.6, -0.3, 0.5}, pose, options);
+  EXPECT_FALSE(IsRed(PixelAt(image, int(away.x()), int(away.y()))));
+}
+
+TEST(RenderTest, CameraDepthAtTheCentreIsTheDistanceToTheSurfaceBelow) {
+  const RenderScene scene = MakeTableSceneWithCamera();
+  RenderOptions options;
+  options.view = ParseView("camera:cam");
+  DepthImage depth;
+  const Image image = SharedRenderer().Render(scene, options, &depth);
+  ASSERT_EQ(depth.width, options.width);
+  ASSERT_EQ(depth.depth_m.size(), size_t(options.width) * options.height);
+  const float centre_m =
+      depth.depth_m[size_t(options.height / 2) * options.width + options.width / 2];
+  EXPECT_NEAR(centre_m, 2.0 - 0.5, 0.01);  // the table top
+  // The cube's top (z = 0.6) where the cube's centre projects, and red there.
+  const CameraPose pose = CalcViewPose(scene, options);
+  const Eigen::Vector2d at = Project({0.6, 0.3, 0.6}, pose, options);
+  ASSERT_GT(at.x(), 0);
+  ASSERT_LT(at.y(), options.height);
+  EXPECT_NEAR(depth.depth_m[size_t(at.y()) * options.width + size_t(at.x())], 2.0 - 0.6, 0.01);
+  // The camera sees +x to the right and +y (its up axis) upwards.
+  ExpectCubeRedAndUpRight(image, pose, options);
+}
+
+TEST(RenderTest, UnknownCameraNameListsTheCameras) {
+  const RenderScene scene = MakeTableSceneWithCamera();
+  RenderOptions options;
+  options.view = ParseView("camera:nope");
+  try {
+    SharedRenderer().Render(scene, options);
+    FAIL() << "no exception";
+  } catch (const std::invalid_argument& e) {
+    EXPECT_NE(std::string(e.what()).find("'nope'"), std::string::npos) << e.what();
+    EXPECT_NE(std::string(e.what()).find("camera objects: cam"), std::string::npos) << e.what();
+  }
+}
+
+TEST(RenderTest, SizeChangesBetweenRenders) {
+  RenderOptions small;
+  small.width = 64;
+  small.height = 48;
+  EXPECT_EQ(SharedRenderer().Render(MakeTableScene(), small).rgb.size(), 64u * 48u * 3u);
+  RenderOptions large;
+  large.width = 800;
+  large.height = 600;
+  EXPECT_EQ(SharedRenderer().Render(MakeTableScene(), large).width, 800);
+}
+
+Image MakeSolidTile(int width, int height, uint8_t value) {
+  return Image{width, height, std::vector<uint8_t>(size_t(width) * height * 3, value)};
+}
+
+TEST(RenderTest, GridLaysTilesOutRowByRow) {
+  EXPECT_EQ(CalcGridShape(9), std::make_pair(3, 3));
+  EXPECT_EQ(CalcGridShape(5), std::make_pair(3, 2));
+  EXPECT_EQ(CalcGridShape(1), std::make_pair(1, 1));
+  std::vector<Image> tiles;
+  for (int i = 0; i < 5; ++i) tiles.push_back(MakeSolidTile(20, 10, uint8_t(10 * i)));
+  const Image grid = ComposeGrid(tiles);
+  const int g = kGridGutter;
+  EXPECT_EQ(grid.width, 60 + 2 * g);
+  EXPECT_EQ(grid.height, 20 + g);
+  EXPECT_EQ(PixelAt(grid, 45 + 2 * g, 5)[0], 20);        // tile 2: first row, third column
+  EXPECT_EQ(PixelAt(grid, 25 + g, 15 + g)[0], 40);       // tile 4: second row, second column
+  EXPECT_EQ(PixelAt(grid, 20, 5)[0], 255);               // the gutter after tile 0
+  EXPECT_EQ(PixelAt(grid, 55 + 2 * g, 15 + g)[0], 255);  // the empty cell stays white
+  tiles.push_back(MakeSolidTile(21, 10, 0));
+  EXPECT_THROW(ComposeGrid(tiles), std::invalid_argument);
+}
+
+TEST(RenderTest, PngFilesReadBackWithTheirSize) {
+  const std::string path = ::testing::TempDir() + "/prs_render_test.png";
+  WritePng(MakeSolidTile(30, 20, 7), path);
+  png_image read{};
+  read.version = PNG_IMAGE_VERSION;
+  ASSERT_TRUE(png_image_begin_read_from_file(&read, path.c_str())) << read.message;
+  EXPECT_EQ(read.width, 30u);
+  EXPECT_EQ(read.height, 20u);
+  png_image_free(&read);
+  std::filesystem::remove(path);
+  EXPECT_THROW(WritePng(MakeSolidTile(4, 4, 0), "/nonexistent-dir/x.png"), std::runtime_error);
+}
+
+TEST(RenderTest, ParsesViewsAndSizes) {
+  EXPECT_EQ(ParseView("front").kind, ViewKind::kFront);
+  EXPECT_EQ(ParseView("camera:Camera#5").camera_name, "Camera#5");
+  EXPECT_THROW(ParseView("side"), std::invalid_argument);
+  EXPECT_THROW(ParseView("camera:"), std::invalid_argument);
+  EXPECT_EQ(ParseSize("640x480"), std::make_pair(640, 480));
+  EXPECT_THROW(ParseSize("640"), std::invalid_argument);
+  EXPECT_THROW(ParseSize("640x480x2"), std::invalid_argument);
+  EXPECT_THROW(ParseSize("8x8"), std::invalid_argument);
+}
+
+}  // namespace
+}  // namespace prs::render

@@ -1,0 +1,73 @@
+// Scenes to RenderScene: JSON lines, sampled scenes with their workspace, outline edges.
+#include "render/scene_input.h"
+
+#include <gtest/gtest.h>
+
+#include "lang/lang.h"
+#include "sampling/sampler.h"
+
+namespace prs::render {
+namespace {
+
+constexpr char kJsonScene[] =
+    R"({"format":"prs-scene/1","seed":0,"index":0,"objects":[)"
+    R"({"name":"cup","class":"Cup","position":[1,2,3],)"
+    R"("orientation":{"quaternion":[1,0,0,0]},"dimensions":[0.1,0.1,0.2],)"
+    R"("properties":{"color":"red","shape_type":"cylinder"}},)"
+    R"({"name":null,"class":"Camera","position":[0,0,2],)"
+    R"("orientation":{"quaternion":[0.7071068,-0.7071068,0,0]},"dimensions":[0.05,0.05,0.05],)"
+    R"("properties":{"color":[0,255,0]}}]})";
+
+TEST(SceneInputTest, ReadsJsonObjectsShapesAndColours) {
+  std::vector<std::string> unknown;
+  const RenderScene scene = ParseRenderSceneJson(kJsonScene, &unknown);
+  ASSERT_EQ(scene.objects.size(), 2u);
+  EXPECT_EQ(scene.objects[0].name, "cup");
+  EXPECT_EQ(scene.objects[0].shape, ObjectShape::kCylinder);
+  EXPECT_TRUE(scene.objects[0].p_WO.isApprox(Eigen::Vector3d(1, 2, 3)));
+  EXPECT_GT(scene.objects[0].color[0], 0.7f);
+  EXPECT_EQ(scene.objects[1].name, "Camera#1");
+  EXPECT_EQ(scene.objects[1].shape, ObjectShape::kCamera);
+  EXPECT_FLOAT_EQ(scene.objects[1].color[1], 1.0f);
+  EXPECT_TRUE(unknown.empty());
+}
+
+TEST(SceneInputTest, JsonErrorsSayWhere) {
+  EXPECT_THROW(ParseRenderSceneJson("{not json", nullptr), std::invalid_argument);
+  EXPECT_THROW(ParseRenderSceneJson(R"({"objects":[]})", nullptr), std::invalid_argument);
+  try {
+    ParseRenderSceneJson(R"({"format":"prs-scene/1","objects":[{"position":[1,2]}]})", nullptr);
+    FAIL() << "no exception";
+  } catch (const std::invalid_argument& e) {
+    EXPECT_NE(std::string(e.what()).find("object 0: 'position'"), std::string::npos) << e.what();
+  }
+}
+
+TEST(SceneInputTest, SampledSceneKeepsItsWorkspaceOutline) {
+  lang::DiagnosticEngine diagnostics;
+  auto program = lang::CompileText("w.prs",
+                                   "workspace = Cuboid(Vector3D(0, 0, 1), Vector3D(0, 0, 0), 4, "
+                                   "3, 2)\nclass Box:\n    color: \"nocolour\"\nb = Box at "
+                                   "Vector3D(0, 0, 1)\n",
+                                   {}, diagnostics);
+  ASSERT_FALSE(diagnostics.has_errors());
+  const sampling::SampledScene sampled = sampling::SampleScene(*program, 1, 0);
+  std::vector<std::string> unknown;
+  const RenderScene scene = MakeRenderScene(sampled.scene, &unknown);
+  ASSERT_EQ(scene.workspace_edges.size(), 12u);
+  double total_m = 0;
+  for (const auto& [a, b] : scene.workspace_edges) total_m += (b - a).norm();
+  EXPECT_NEAR(total_m, 4 * (4 + 3 + 2), 1e-9);
+  ASSERT_EQ(unknown.size(), 1u);
+  EXPECT_NE(unknown[0].find("nocolour"), std::string::npos);
+}
+
+TEST(SceneInputTest, OutlineOfARectangleAndOfUnboundedRegions) {
+  const auto rect = geometry::ConvexRegion::MakeRect3D(Eigen::Vector3d::Zero(),
+                                                       Eigen::Matrix3d::Identity(), 2, 1);
+  EXPECT_EQ(CalcOutlineEdges(rect).size(), 4u);
+  EXPECT_TRUE(CalcOutlineEdges(geometry::ConvexRegion::All()).empty());
+}
+
+}  // namespace
+}  // namespace prs::render
