@@ -104,6 +104,10 @@ std::optional<Rgba> FromElements(const std::vector<lang::Value>& elements) {
 
 }  // namespace
 
+std::optional<Rgba> ParseColorNumbers(std::vector<double> numbers) {
+  return FromNumbers(std::move(numbers));
+}
+
 std::optional<Rgba> ParseColorText(std::string_view text) {
   if (auto named = FindNamedColor(text)) return named;
   if (auto numbers = SplitNumbers(text)) return FromNumbers(std::move(*numbers));

@@ -1,10 +1,10 @@
-// Reading an object's `color` property into RGBA, shared by every exporter (and meant for the
-// renderer too): colour names, grey levels, RGB triples. The accepted forms are listed in
+// Reading an object's `color` property into RGBA, shared by every exporter and the renderer: colour names, grey levels, RGB triples. The accepted forms are listed in
 // docs/export.md.
 #pragma once
 
 #include <optional>
 #include <string_view>
+#include <vector>
 
 #include "lang/value.h"
 
@@ -25,6 +25,11 @@ struct Rgba {
 /// - "#rrggbb".
 /// Returns nullopt for anything else, or for numbers out of range.
 std::optional<Rgba> ParseColorText(std::string_view text);
+
+/// Reads numbers as a colour: one (a grey level), three (RGB) or four (RGBA), all in [0, 1], or
+/// all on the 0..255 scale when any exceeds 1. Returns nullopt for another count or a number
+/// out of range.
+std::optional<Rgba> ParseColorNumbers(std::vector<double> numbers);
 
 /// Parses a `color` property value: text as ParseColorText, a number as a grey level, or a
 /// vector, tuple or list of three or four numbers. Returns nullopt for any other value.

@@ -9,7 +9,7 @@
 #include <stdexcept>
 
 #include "lang/program.h"
-#include "render/color.h"
+#include "export/color.h"
 
 namespace prs::render {
 namespace {
@@ -47,29 +47,14 @@ void ApplyProperties(const DrawProperties& properties, RenderObject& object,
   }
 }
 
-std::optional<std::vector<double>> NumbersOf(const std::vector<lang::Value>& elements) {
-  std::vector<double> numbers;
-  for (const lang::Value& element : elements) {
-    if (!element.Is<double>()) return std::nullopt;
-    numbers.push_back(element.As<double>());
-  }
-  return numbers;
+std::optional<Rgba> ToRenderColor(const std::optional<exporting::Rgba>& c) {
+  if (!c) return std::nullopt;
+  return Rgba{float(c->r), float(c->g), float(c->b), float(c->a)};
 }
 
-// A `color` value of the language: a string, a number, a vector, a tuple or a list.
+// A `color` value of the language, read by the export rules' parser (one parser for both).
 std::optional<Rgba> ParseColorValue(const lang::Value& value) {
-  if (value.Is<lang::StringPtr>()) return ParseColorText(*value.As<lang::StringPtr>());
-  if (value.Is<double>()) return ParseColorNumbers({value.As<double>()});
-  if (value.Is<Eigen::Vector3d>()) {
-    const Eigen::Vector3d& v = value.As<Eigen::Vector3d>();
-    return ParseColorNumbers({v.x(), v.y(), v.z()});
-  }
-  std::optional<std::vector<double>> numbers;
-  if (value.Is<std::shared_ptr<lang::TupleData>>())
-    numbers = NumbersOf(value.As<std::shared_ptr<lang::TupleData>>()->elements);
-  if (value.Is<std::shared_ptr<lang::ListData>>())
-    numbers = NumbersOf(value.As<std::shared_ptr<lang::ListData>>()->elements);
-  return numbers ? ParseColorNumbers(*numbers) : std::nullopt;
+  return ToRenderColor(exporting::ParseColor(value));
 }
 
 DrawProperties ReadDrawProperties(const lang::SceneObject& source) {
@@ -115,15 +100,15 @@ Eigen::Quaterniond ReadQuaternion(const nlohmann::json& object, size_t index) {
 }
 
 std::optional<Rgba> ParseColorJson(const nlohmann::json& color) {
-  if (color.is_string()) return ParseColorText(color.get<std::string>());
-  if (color.is_number()) return ParseColorNumbers({color.get<double>()});
+  if (color.is_string()) return ToRenderColor(exporting::ParseColorText(color.get<std::string>()));
+  if (color.is_number()) return ToRenderColor(exporting::ParseColorNumbers({color.get<double>()}));
   if (!color.is_array()) return std::nullopt;
   std::vector<double> numbers;
   for (const auto& x : color) {
     if (!x.is_number()) return std::nullopt;
     numbers.push_back(x.get<double>());
   }
-  return ParseColorNumbers(numbers);
+  return ToRenderColor(exporting::ParseColorNumbers(numbers));
 }
 
 DrawProperties ReadDrawProperties(const nlohmann::json& object) {
