@@ -3,7 +3,9 @@
 // is not, an easy scene succeeds end to end, and episodes are deterministic.
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cstdlib>
+#include <optional>
 
 #include "render/model_renderer.h"
 #include "sampling/sampler.h"
