@@ -8,6 +8,7 @@
 #include <stdexcept>
 
 #include "render/egl_context.h"
+#include "render/model_renderer.h"
 #include "render/mujoco_model.h"
 #include "render/render.h"
 #include "render/scene_geoms.h"
@@ -154,6 +155,65 @@ Image Renderer::Render(const RenderScene& scene, const RenderOptions& options, D
     FlipRows(raw_depth, options.width, options.height, 1);
     LinearizeDepth(raw_depth, pose);
     *depth = DepthImage{options.width, options.height, std::move(raw_depth)};
+  }
+  return image;
+}
+
+// --- ModelRenderer: a simulation's own model and cameras ---
+
+struct ModelRenderer::State {
+  internal::EglContext egl;  // first: MuJoCo's context needs a current OpenGL context
+  const mjModel& model;
+  int width, height;
+  mjvScene scene;
+  mjvOption option;
+  mjvCamera camera;
+  mjrContext context;
+
+  State(const mjModel& m, int w, int h) : model(m), width(w), height(h) {
+    internal::InstallMujocoMessageHandlers();
+    if (w > m.vis.global.offwidth || h > m.vis.global.offheight)
+      throw std::runtime_error("the model's offscreen buffer is smaller than the picture");
+    mjv_defaultScene(&scene);
+    mjv_makeScene(&model, &scene, 4000);
+    mjv_defaultOption(&option);
+    mjv_defaultCamera(&camera);
+    camera.type = mjCAMERA_FIXED;
+    mjr_defaultContext(&context);
+    mjr_makeContext(&model, &context, mjFONTSCALE_100);
+    mjr_setBuffer(mjFB_OFFSCREEN, &context);
+    if (context.currentBuffer != mjFB_OFFSCREEN)
+      throw std::runtime_error("MuJoCo could not make its offscreen framebuffer");
+  }
+  ~State() {
+    mjr_freeContext(&context);
+    mjv_freeScene(&scene);
+  }
+};
+
+ModelRenderer::ModelRenderer(const mjModel& model, int width, int height)
+    : state_(std::make_unique<State>(model, width, height)) {}
+ModelRenderer::~ModelRenderer() = default;
+
+Image ModelRenderer::Render(mjData& data, int camera_id, DepthImage* depth) {
+  State& s = *state_;
+  s.egl.MakeCurrent();
+  s.camera.fixedcamid = camera_id;
+  mjv_updateScene(&s.model, &data, &s.option, nullptr, &s.camera, mjCAT_ALL, &s.scene);
+  const mjrRect viewport = {0, 0, s.width, s.height};
+  mjr_render(viewport, &s.scene, &s.context);
+  Image image{s.width, s.height, std::vector<uint8_t>(size_t(s.width) * s.height * 3)};
+  std::vector<float> raw_depth(depth ? size_t(s.width) * s.height : 0);
+  mjr_readPixels(image.rgb.data(), depth ? raw_depth.data() : nullptr, viewport, &s.context);
+  FlipRows(image.rgb, s.width, s.height, 3);
+  if (depth) {
+    // MuJoCo's clipping planes scale with the model's extent.
+    CameraPose planes;
+    planes.near_m = s.model.vis.map.znear * s.model.stat.extent;
+    planes.far_m = s.model.vis.map.zfar * s.model.stat.extent;
+    FlipRows(raw_depth, s.width, s.height, 1);
+    LinearizeDepth(raw_depth, planes);
+    *depth = DepthImage{s.width, s.height, std::move(raw_depth)};
   }
   return image;
 }

@@ -1,11 +1,11 @@
 // The simulated world from a scene (see world.h).
 #include "sim/world.h"
 
-#include "sim/control.h"
-
 #include <fmt/format.h>
 
 #include <stdexcept>
+
+#include "sim/control.h"
 
 namespace prs::sim {
 
