@@ -9,6 +9,7 @@
 #include <memory>
 #include <optional>
 
+#include "cli/builtin_controllers.h"
 #include "cli/commands.h"
 #include "cli/common.h"
 #include "cli/failure_pictures.h"
@@ -218,6 +219,7 @@ CLI::Validator PositiveSeconds() {
 }  // namespace
 
 CommandRunner ConfigureTestCommand(CLI::App& command) {
+  RegisterBuiltInControllers();
   auto args = std::make_shared<TestArgs>();
   AddScenarioOptions(command, args->scenario);
   CLI::Option* controller = command

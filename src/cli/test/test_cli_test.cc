@@ -1,6 +1,7 @@
 // End-to-end tests of `prs test`: the example Python controller over --exec agrees with the
-// built-in demo-reach, the table adds up, records are the same for 1 and 2 threads, failures
-// are saved and regenerate, timeouts, and bad flags (exit 2) or scenarios (exit 1).
+// built-in demo-reach, the table adds up, records are the same for 1 and 2 threads (also for the
+// simulated table-cube), failures are saved with pictures and regenerate, timeouts, SIGTERM,
+// and bad flags (exit 2) or scenarios (exit 1, 3).
 #include <nlohmann/json.hpp>
 
 #include "cli/test/prs_test_fixture.h"
@@ -117,6 +118,22 @@ TEST_F(PrsTestCommandTest, RecordsAreTheSameForOneAndTwoThreads) {
     demo[threads - 1] = WithoutTimes(ReadRecords(out));
   }
   EXPECT_EQ(demo[0], demo[1]);
+}
+
+// The simulated case study through the harness: a short run, the same records on 1 and 2
+// threads (each thread with its own simulation and rendering context).
+TEST_F(PrsTestCommandTest, TableCubeControllerRunsTheSameOnOneAndTwoThreads) {
+  std::vector<json> runs[2];
+  for (const int threads : {1, 2}) {
+    const std::string out = Path("tc" + std::to_string(threads) + ".jsonl");
+    const Result r = Run(TableCube({"--controller", "table-cube", "-n", "4", "-s", "1", "--threads",
+                                    std::to_string(threads), "-o", out}));
+    ASSERT_EQ(r.exit_code, 0) << r.err;
+    runs[threads - 1] = WithoutTimes(ReadRecords(out));
+  }
+  ASSERT_EQ(runs[0].size(), 4u);
+  EXPECT_EQ(runs[0], runs[1]);
+  EXPECT_GE(CountOutcomes(runs[0])["success"], 1) << json(runs[0]).dump();
 }
 
 TEST_F(PrsTestCommandTest, FailingScenesAreSavedAndTheirCommandRegeneratesThem) {

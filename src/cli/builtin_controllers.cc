@@ -1,0 +1,42 @@
+// Adapters from the simulated controllers' own result types to the harness's Controller
+// interface, so that src/sim and src/harness need not know each other.
+#include "cli/builtin_controllers.h"
+
+#include <mutex>
+
+#include "harness/registry.h"
+#include "sim/table_cube_controller.h"
+
+namespace prs::cli {
+namespace {
+
+// The paper's case-study controller (MuJoCo, camera perception, inverse kinematics); one per
+// worker thread, each with its own simulation and rendering context.
+class TableCubeEpisodes : public harness::Controller {
+ public:
+  harness::EpisodeResult RunEpisode(const sampling::SampledScene& scene,
+                                    const std::string& /*scene_json*/) override {
+    const sim::TaskOutcome outcome = controller_.Run(scene.scene);
+    nlohmann::json extra = nlohmann::json::object();
+    for (const auto& [name, value] : outcome.metrics) extra[name] = value;
+    return {outcome.outcome, outcome.detail, std::move(extra)};
+  }
+
+ private:
+  sim::TableCubeController controller_;
+};
+
+}  // namespace
+
+void RegisterBuiltInControllers() {
+  static std::once_flag registered;
+  std::call_once(registered, [] {
+    harness::RegisterController(
+        "table-cube",
+        "the paper's case study in MuJoCo: find the cube in the ceiling camera, pick, hand over, "
+        "drop in the right tray",
+        [] { return std::make_unique<TableCubeEpisodes>(); });
+  });
+}
+
+}  // namespace prs::cli
