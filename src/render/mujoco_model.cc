@@ -1,5 +1,6 @@
-// The render model as MJCF text: what is the same in every picture. Objects are not in it:
-// they are added per scene as decoration geoms (see renderer.cc), so one model serves all.
+// MuJoCo models from text (see mujoco_model.h), and the render model: what is the same in
+// every picture. Objects are not in it: they are added per scene as decoration geoms (see
+// renderer.cc), so one model serves all.
 #include "render/mujoco_model.h"
 
 #include <cstdio>
@@ -9,7 +10,8 @@
 #include <stdexcept>
 #include <string>
 
-namespace prs::render::internal {
+namespace prs::render {
+namespace internal {
 namespace {
 
 // Floor checks of 0.25 m (texuniform: texrepeat counts per metre); a soft sky gradient; a
@@ -44,32 +46,38 @@ void PrintMujocoErrorAndExit(const char* message) {
   std::exit(1);
 }
 
-struct VfsDeleter {
-  void operator()(mjVFS* vfs) const {
-    mj_deleteVFS(vfs);
-    delete vfs;
-  }
-};
-
 }  // namespace
 
+ModelPtr LoadRenderModel() { return LoadModelFromXml(kRenderModelXml); }
+
+}  // namespace internal
+
 void InstallMujocoMessageHandlers() {
-  mju_user_warning = PrintMujocoWarning;
-  mju_user_error = PrintMujocoErrorAndExit;
+  mju_user_warning = internal::PrintMujocoWarning;
+  mju_user_error = internal::PrintMujocoErrorAndExit;
 }
 
-mjModel* LoadRenderModel() {
-  std::unique_ptr<mjVFS, VfsDeleter> vfs(new mjVFS);  // large: ~2000 file slots
+ModelPtr LoadModelFromXml(const std::string& xml) {
+  InstallMujocoMessageHandlers();
+  // mjVFS holds fixed arrays of file names (megabytes): keep it off the stack.
+  auto vfs = std::make_unique<mjVFS>();
   mj_defaultVFS(vfs.get());
-  const char* name = "prs_render.xml";
-  const int size = static_cast<int>(std::strlen(kRenderModelXml));
-  if (mj_makeEmptyFileVFS(vfs.get(), name, size) != 0)
-    throw std::runtime_error("cannot make the render model's in-memory file");
-  std::memcpy(vfs->filedata[mj_findFileVFS(vfs.get(), name)], kRenderModelXml, size);
-  char error[1000] = "";
-  mjModel* model = mj_loadXML(name, vfs.get(), error, sizeof error);
-  if (!model) throw std::runtime_error(std::string("cannot load the render model: ") + error);
+  const char* kName = "model.xml";
+  if (mj_makeEmptyFileVFS(vfs.get(), kName, static_cast<int>(xml.size())) != 0) {
+    throw std::runtime_error("MuJoCo could not make room for the model in memory");
+  }
+  std::memcpy(vfs->filedata[mj_findFileVFS(vfs.get(), kName)], xml.data(), xml.size());
+  char error[1024] = "";
+  ModelPtr model(mj_loadXML(kName, vfs.get(), error, sizeof error));
+  mj_deleteVFS(vfs.get());
+  if (!model) throw std::runtime_error(std::string("MuJoCo rejected the model: ") + error);
   return model;
 }
 
-}  // namespace prs::render::internal
+DataPtr MakeData(const mjModel& model) {
+  DataPtr data(mj_makeData(&model));
+  if (!data) throw std::runtime_error("MuJoCo could not allocate simulation data");
+  return data;
+}
+
+}  // namespace prs::render

@@ -17,6 +17,8 @@ namespace prs::render {
 
 struct Renderer::State {
   internal::EglContext egl;  // first: MuJoCo's context needs a current OpenGL context
+  ModelPtr model_owner;
+  DataPtr data_owner;
   mjModel* model = nullptr;
   mjData* data = nullptr;
   mjvScene scene;
@@ -27,9 +29,10 @@ struct Renderer::State {
   int floor_texture = -1;
 
   State() {
-    internal::InstallMujocoMessageHandlers();
-    model = internal::LoadRenderModel();
-    data = mj_makeData(model);
+    model_owner = internal::LoadRenderModel();
+    data_owner = MakeData(*model_owner);
+    model = model_owner.get();
+    data = data_owner.get();
     mj_forward(model, data);  // the lights' world positions and directions
     mjv_defaultScene(&scene);
     mjv_defaultOption(&option);
@@ -40,8 +43,6 @@ struct Renderer::State {
   ~State() {
     mjr_freeContext(&context);
     mjv_freeScene(&scene);
-    mj_deleteData(data);
-    mj_deleteModel(model);
   }
 
   // MuJoCo 2.2 sizes its offscreen buffer once, from the model, when the context is made.
@@ -171,7 +172,7 @@ struct ModelRenderer::State {
   mjrContext context;
 
   State(const mjModel& m, int w, int h) : model(m), width(w), height(h) {
-    internal::InstallMujocoMessageHandlers();
+    InstallMujocoMessageHandlers();
     if (w > m.vis.global.offwidth || h > m.vis.global.offheight)
       throw std::runtime_error("the model's offscreen buffer is smaller than the picture");
     mjv_defaultScene(&scene);
