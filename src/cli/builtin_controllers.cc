@@ -14,6 +14,7 @@ namespace {
 // worker thread, each with its own simulation and rendering context.
 class TableCubeEpisodes : public harness::Controller {
  public:
+  explicit TableCubeEpisodes(sim::TableCubeOptions options = {}) : controller_(options) {}
   harness::EpisodeResult RunEpisode(const sampling::SampledScene& scene,
                                     const std::string& /*scene_json*/) override {
     const sim::TaskOutcome outcome = controller_.Run(scene.scene);
@@ -36,6 +37,14 @@ void RegisterBuiltInControllers() {
         "the paper's case study in MuJoCo: find the cube in the ceiling camera, pick, hand over, "
         "drop in the right tray",
         [] { return std::make_unique<TableCubeEpisodes>(); });
+    harness::RegisterController(
+        "table-cube-clear-view",
+        "table-cube with the fix of docs/case_study.md: both arms turn away before each picture",
+        [] {
+          sim::TableCubeOptions options;
+          options.clear_view_before_sighting = true;
+          return std::make_unique<TableCubeEpisodes>(options);
+        });
   });
 }
 

@@ -21,6 +21,8 @@ constexpr double kApproachHeight_m = 0.12;  // above the cube before descending
 constexpr double kLiftHeight_m = 0.15;
 constexpr double kMove_s = 1.2;
 constexpr double kDescend_s = 0.8;
+// The ready pose turned to face backwards: the arm no longer reaches over the table.
+const PandaJointVector kClearViewPose_rad = {2.8, -kPi / 4, 0, -3 * kPi / 4, 0, kPi / 2, kPi / 4};
 
 // Thrown inside an episode to end it with an outcome.
 struct EpisodeEnd {
@@ -49,6 +51,7 @@ struct TableCubeController::Episode {
   // The cube's centre as the camera sees it, or a perception fault. `metric` names the
   // sighting's error in the outcome's metrics.
   Eigen::Vector3d See(const std::string& when, const std::string& metric) {
+    if (options.clear_view_before_sighting) SetAllArms(kClearViewPose_rad);
     render::DepthImage depth;
     const render::Image image = renderer->Render(*world.data, camera_id, &depth);
     const PinholeCamera camera = GetMujocoCamera(*world.model, *world.data, camera_id, image.width, image.height);
@@ -59,7 +62,12 @@ struct TableCubeController::Episode {
     const Eigen::Vector3d p_center = p_top - Eigen::Vector3d::UnitZ() * (options.cube_size_m / 2);
     last_sighting_error_m = (p_center - TrueCubePosition()).norm();
     metrics.emplace_back(metric, last_sighting_error_m);
+    if (options.clear_view_before_sighting) SetAllArms(kPandaReadyPose_rad);
     return p_center;
+  }
+
+  void SetAllArms(const PandaJointVector& q_rad) {
+    for (const WorldArm& arm : world.arms) MoveJointsTo(world, arm, q_rad, kMove_s);
   }
 
   // A failure of the arm is the camera's fault when the cube was not where it was seen.

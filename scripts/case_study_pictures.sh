@@ -1,0 +1,20 @@
+#!/usr/bin/env bash
+# Regenerates the pictures of docs/case_study.md from the Release build (build/): scenes drawn
+# by `prs render`, and what the controller's ceiling camera sees in the simulated world
+# (build/src/sim/prs_camera_snapshot). Usage: scripts/case_study_pictures.sh
+set -euo pipefail
+cd "$(dirname "$0")/.."
+build=${PRS_BUILD_DIR:-build}
+cmake --build "$build" -j2 --target prs prs_camera_snapshot
+out=docs/images/case_study
+mkdir -p "$out"
+prs=$build/src/cli/prs
+snapshot=$build/src/sim/prs_camera_snapshot
+# One scene per outcome of `prs test examples/table_cube.prs --controller table-cube -n 100 -s 1`.
+for scene in "0 success" "4 perception-fault" "17 no-path" "63 poor-grip"; do
+  set -- $scene
+  "$prs" render examples/table_cube.prs -s 1 --start "$1" -n 1 --size 480x360 -q -o "$out/$2-$1.png"
+done
+"$snapshot" examples/table_cube.prs 1 4 "$out/camera-partly-out-of-view-4.png"
+"$snapshot" examples/table_cube_high_camera.prs 1 19 "$out/camera-hidden-by-arm-19.png"
+echo "case_study_pictures: wrote $(ls "$out" | wc -l) pictures in $out"
