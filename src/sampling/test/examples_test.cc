@@ -6,6 +6,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <filesystem>
 
 #include "sampling/test/scene_checks.h"
 
@@ -123,6 +124,20 @@ void ExpectConstructsRelations(const Scene& scene) {
   EXPECT_LE(gears, 3);
 }
 
+// Every example file, including ones added later, compiles and keeps the scene-wide rules.
+TEST(ExamplesTest, EveryExampleFileKeepsTheSceneWideRules) {
+  int files = 0;
+  for (const auto& entry : std::filesystem::directory_iterator(RepoPath("examples"))) {
+    if (entry.path().extension() != ".prs" || entry.path().filename() == "model.prs") continue;
+    ++files;
+    auto program = CompileExample(entry.path().filename().string());
+    ASSERT_NE(program, nullptr) << entry.path();
+    SceneSampler sampler(*program);
+    for (uint64_t i = 0; i < 50; ++i) ExpectNoCollisionsAndInsideWorkspace(sampler.Sample(4, i).scene);
+  }
+  EXPECT_GE(files, 3);
+}
+
 TEST(ExamplesTest, TableCubeHoldsInEverySceneWithoutRejection) {
   auto program = CompileExample("table_cube.prs");
   ASSERT_NE(program, nullptr);
@@ -186,21 +201,6 @@ TEST(ExamplesTest, CubeIsUniformOverTheTrayRelativeToTheTray) {
   double chi_square = 0;
   for (int c : counts) chi_square += (c - expected) * (c - expected) / expected;
   EXPECT_LT(chi_square, 51.18);  // the 0.999 quantile of chi-square with 24 degrees of freedom
-}
-
-// The largest gap between the empirical distribution functions of a and b.
-double KolmogorovSmirnov(std::vector<double> a, std::vector<double> b) {
-  std::sort(a.begin(), a.end());
-  std::sort(b.begin(), b.end());
-  size_t i = 0, j = 0;
-  double d = 0;
-  while (i < a.size() && j < b.size()) {
-    const double x = std::min(a[i], b[j]);
-    while (i < a.size() && a[i] <= x) ++i;
-    while (j < b.size() && b[j] <= x) ++j;
-    d = std::max(d, std::abs(double(i) / a.size() - double(j) / b.size()));
-  }
-  return d;
 }
 
 // Both modes are exact, so the trays' and the cube's coordinates have the same law.

@@ -16,21 +16,6 @@ using lang::Scene;
 using lang::SceneObject;
 using namespace testing_checks;
 
-// The largest gap between the empirical distribution functions of a and b.
-double KolmogorovSmirnov(std::vector<double> a, std::vector<double> b) {
-  std::sort(a.begin(), a.end());
-  std::sort(b.begin(), b.end());
-  size_t i = 0, j = 0;
-  double d = 0;
-  while (i < a.size() && j < b.size()) {
-    const double x = std::min(a[i], b[j]);
-    while (i < a.size() && a[i] <= x) ++i;
-    while (j < b.size() && b[j] <= x) ++j;
-    d = std::max(d, std::abs(double(i) / a.size() - double(j) / b.size()));
-  }
-  return d;
-}
-
 constexpr char kTrayBesideRobot[] = R"(from model import *
 t = Table at Vector3D(0, 0, 0.4)
 r = Robot on (top back t) - Vector3D(0.4, 0, 0)

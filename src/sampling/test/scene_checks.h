@@ -1,10 +1,12 @@
-// Checks shared by the scenario tests: compile helpers, finding objects in a scene, and
+// Checks shared by the scenario tests: compile helpers, finding objects in a scene,
 // relations (completely on, beyond a plane, box overlap) computed with plain arithmetic,
-// independent of the sampler's regions.
+// independent of the sampler's regions, and a two-sample test.
 #pragma once
 
 #include <gtest/gtest.h>
 
+#include <algorithm>
+#include <cmath>
 #include <cstdlib>
 #include <memory>
 #include <string>
@@ -101,6 +103,22 @@ inline bool BoxesOverlapByPoints(const SceneObject& a, const SceneObject& b) {
     }
   }
   return false;
+}
+
+// The two-sample Kolmogorov-Smirnov statistic: the largest gap between the empirical
+// distribution functions of a and b.
+inline double KolmogorovSmirnov(std::vector<double> a, std::vector<double> b) {
+  std::sort(a.begin(), a.end());
+  std::sort(b.begin(), b.end());
+  size_t i = 0, j = 0;
+  double d = 0;
+  while (i < a.size() && j < b.size()) {
+    const double x = std::min(a[i], b[j]);
+    while (i < a.size() && a[i] <= x) ++i;
+    while (j < b.size() && b[j] <= x) ++j;
+    d = std::max(d, std::abs(double(i) / a.size() - double(j) / b.size()));
+  }
+  return d;
 }
 
 }  // namespace prs::sampling::testing_checks
