@@ -26,6 +26,12 @@ def table_cube() -> prs.Scenario:
     return prs.load(EXAMPLES / "table_cube.prs")
 
 
+@pytest.fixture(scope="session")
+def constructs() -> prs.Scenario:
+    """About 0.3 ms a scene: heavy enough that sampling, not handing scenes to Python, dominates."""
+    return prs.load(EXAMPLES / "constructs.prs")
+
+
 def run_prs(binary: pathlib.Path, *args: str) -> subprocess.CompletedProcess:
     """Runs `prs ARGS...` and returns its result (stdout and stderr as text)."""
     return subprocess.run([str(binary), *args], capture_output=True, text=True, timeout=300)
