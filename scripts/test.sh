@@ -1,7 +1,8 @@
 #!/usr/bin/env bash
-# Sets up, builds and runs every test: the Release build, then the same tests under
-# AddressSanitizer + UndefinedBehaviorSanitizer, then a 20-second libFuzzer run over the
-# language stage (scripts/fuzz.sh). Exits non-zero if anything fails.
+# Sets up, builds and runs every test: the Release build (C++ tests, the simulated case study,
+# the headless-Chromium viewer test), the Python package (scripts/test_python.sh), the same C++
+# tests under AddressSanitizer + UndefinedBehaviorSanitizer, then a 20-second libFuzzer run over
+# the language stage (scripts/fuzz.sh). Exits non-zero if anything fails.
 set -euo pipefail
 cd "$(dirname "$0")/.."
 scripts/setup.sh
