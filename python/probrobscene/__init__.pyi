@@ -66,6 +66,9 @@ class Scene:
     def __len__(self) -> int: ...
     def to_json(self) -> str: ...
     def to_dict(self) -> Dict[str, Any]: ...
+    def export(self, format: str, path: str) -> None: ...  # 'mjcf', 'urdf', 'sdf', 'usda', 'gltf', 'glb'
+    def render(self, path: str, width: int = 640, height: int = 480,
+               view: str = "overview") -> None: ...  # PNG; view 'overview', 'top', 'front', 'camera:NAME'
 
 class Scenario:
     @property

@@ -54,6 +54,8 @@ Eigen::Vector3d CalcObjectYawPitchRoll(const lang::SceneObject& object);
 
 /// Registers Scene, SceneObject and the batch helpers (scene.cc).
 void BindScene(py::module_& m);
+/// Adds Scene.export and Scene.render (scene_files.cc).
+void BindSceneFiles(py::class_<Scene, ScenePtr>& scene);
 /// Registers Scenario and the compile functions (scenario.cc).
 void BindScenario(py::module_& m);
 

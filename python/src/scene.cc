@@ -123,7 +123,9 @@ void BindSceneObject(py::module_& m) {
 }
 
 void BindSceneClass(py::module_& m) {
-  py::class_<Scene, ScenePtr>(m, "Scene", "One sampled scene: scene `index` of `seed`.")
+  py::class_<Scene, ScenePtr> scene(m, "Scene", "One sampled scene: scene `index` of `seed`.");
+  BindSceneFiles(scene);
+  scene
       .def_property_readonly("seed", [](const Scene& s) { return s.sampled.seed; })
       .def_property_readonly("index", [](const Scene& s) { return s.sampled.index; })
       .def_property_readonly(
