@@ -78,6 +78,11 @@ void Interpreter::RunModule(int module_index) {
   if (cacheable && draws_ == draws_before && scene_.objects.size() == objects_before &&
       scene_.params.size() == params_before && !imports_unshared_[module_index] &&
       IsSameInEveryScene(module_envs_[module_index])) {
+    // Scenes carry these regions (Scene::workspace) to other threads: fill their lazily
+    // computed caches now, so that reading them there races with nothing.
+    for (const auto& [name, value] : module_envs_[module_index]) {
+      if (value.Is<RegionPtr>()) value.As<RegionPtr>()->Finalize();
+    }
     options_.cache->module_globals[module_index] = module_envs_[module_index];
     module_shared_[module_index] = true;
   }
