@@ -108,4 +108,8 @@ void EglContext::MakeCurrent() const {
   if (!eglMakeCurrent(display_, surface_, surface_, context_)) FailEgl("eglMakeCurrent");
 }
 
+void EglContext::Release() const {
+  eglMakeCurrent(display_, EGL_NO_SURFACE, EGL_NO_SURFACE, EGL_NO_CONTEXT);
+}
+
 }  // namespace prs::render::internal

@@ -16,6 +16,21 @@ class EglContext {
 
   /// Makes the context current on the calling thread again.
   void MakeCurrent() const;
+  /// Makes no context current on the calling thread, so that another thread can take this one.
+  void Release() const;
+
+  /// Current on the calling thread for one scope, released at its end (for objects that move
+  /// between threads, such as a controller's renderer in a pool).
+  class Scope {
+   public:
+    explicit Scope(const EglContext& egl) : egl_(egl) { egl_.MakeCurrent(); }
+    ~Scope() { egl_.Release(); }
+    Scope(const Scope&) = delete;
+    Scope& operator=(const Scope&) = delete;
+
+   private:
+    const EglContext& egl_;
+  };
 
  private:
   void* display_ = nullptr;

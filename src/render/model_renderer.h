@@ -13,15 +13,20 @@ namespace prs::render {
 
 class ModelRenderer {
  public:
-  /// Prepares rendering of `model`, which must outlive this object. width x height must fit
-  /// the model's offscreen buffer (<visual><global offwidth offheight>). Throws
-  /// std::runtime_error when no OpenGL context or framebuffer can be made.
+  /// Makes the OpenGL context for width x height pictures. Throws std::runtime_error when no
+  /// context can be made.
+  ModelRenderer(int width, int height);
+  /// The same, then SetModel(model).
   ModelRenderer(const mjModel& model, int width, int height);
+  /// Renders `model` from now on (one renderer serves model after model, keeping its OpenGL
+  /// context). The model must outlive its use here, and its offscreen buffer (<visual><global
+  /// offwidth offheight>) must fit the picture; std::runtime_error otherwise.
+  void SetModel(const mjModel& model);
   ~ModelRenderer();
   ModelRenderer(const ModelRenderer&) = delete;
   ModelRenderer& operator=(const ModelRenderer&) = delete;
 
-  /// What camera `camera_id` sees in state `data`, rows from the top; `depth` (when not null)
+  /// What camera `camera_id` of the current model sees in state `data`, rows from the top; `depth` (when not null)
   /// gets the distance along the camera's look axis, +infinity where nothing is seen.
   Image Render(mjData& data, int camera_id, DepthImage* depth = nullptr);
 

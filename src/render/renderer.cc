@@ -114,8 +114,7 @@ void FlipRows(std::vector<T>& pixels, int width, int height, int channels) {
 
 // Depth-buffer values d in [0, 1] to distance along the view axis, as MuJoCo's docs give it:
 // near / (1 - d (1 - near / far)). The far plane itself (the sky) is "nothing seen".
-void LinearizeDepth(std::vector<float>& depth, const CameraPose& pose) {
-  const double near = pose.near_m, far = pose.far_m;
+void LinearizeDepth(std::vector<float>& depth, double near, double far) {
   for (float& d : depth) {
     d = d >= 1.0f ? std::numeric_limits<float>::infinity()
                   : static_cast<float>(near / (1.0 - d * (1.0 - near / far)));
@@ -154,7 +153,7 @@ Image Renderer::Render(const RenderScene& scene, const RenderOptions& options, D
   FlipRows(image.rgb, options.width, options.height, 3);
   if (depth) {
     FlipRows(raw_depth, options.width, options.height, 1);
-    LinearizeDepth(raw_depth, pose);
+    LinearizeDepth(raw_depth, pose.near_m, pose.far_m);
     *depth = DepthImage{options.width, options.height, std::move(raw_depth)};
   }
   return image;
@@ -164,43 +163,62 @@ Image Renderer::Render(const RenderScene& scene, const RenderOptions& options, D
 
 struct ModelRenderer::State {
   internal::EglContext egl;  // first: MuJoCo's context needs a current OpenGL context
-  const mjModel& model;
+  const mjModel* model = nullptr;
   int width, height;
   mjvScene scene;
   mjvOption option;
   mjvCamera camera;
   mjrContext context;
 
-  State(const mjModel& m, int w, int h) : model(m), width(w), height(h) {
+  // The context is current only inside each call (internal::EglContext::Scope): a
+  // renderer may be used by one thread after another.
+  State(int w, int h) : width(w), height(h) {
     InstallMujocoMessageHandlers();
-    if (w > m.vis.global.offwidth || h > m.vis.global.offheight)
-      throw std::runtime_error("the model's offscreen buffer is smaller than the picture");
+    egl.Release();
     mjv_defaultScene(&scene);
-    mjv_makeScene(&model, &scene, 4000);
     mjv_defaultOption(&option);
     mjv_defaultCamera(&camera);
     camera.type = mjCAMERA_FIXED;
     mjr_defaultContext(&context);
-    mjr_makeContext(&model, &context, mjFONTSCALE_100);
-    mjr_setBuffer(mjFB_OFFSCREEN, &context);
-    if (context.currentBuffer != mjFB_OFFSCREEN)
-      throw std::runtime_error("MuJoCo could not make its offscreen framebuffer");
   }
   ~State() {
+    internal::EglContext::Scope current(egl);
     mjr_freeContext(&context);
     mjv_freeScene(&scene);
   }
+
+  // MuJoCo's scene and render context hold the model's meshes, textures and buffer sizes.
+  void UseModel(const mjModel& m) {
+    if (width > m.vis.global.offwidth || height > m.vis.global.offheight)
+      throw std::runtime_error("the model's offscreen buffer is smaller than the picture");
+    internal::EglContext::Scope current(egl);
+    mjr_freeContext(&context);
+    mjv_freeScene(&scene);
+    mjv_makeScene(&m, &scene, 4000);
+    mjr_makeContext(&m, &context, mjFONTSCALE_100);
+    mjr_setBuffer(mjFB_OFFSCREEN, &context);
+    if (context.currentBuffer != mjFB_OFFSCREEN)
+      throw std::runtime_error("MuJoCo could not make its offscreen framebuffer");
+    model = &m;
+  }
 };
 
+ModelRenderer::ModelRenderer(int width, int height)
+    : state_(std::make_unique<State>(width, height)) {}
 ModelRenderer::ModelRenderer(const mjModel& model, int width, int height)
-    : state_(std::make_unique<State>(model, width, height)) {}
+    : ModelRenderer(width, height) {
+  SetModel(model);
+}
 ModelRenderer::~ModelRenderer() = default;
+
+void ModelRenderer::SetModel(const mjModel& model) { state_->UseModel(model); }
 
 Image ModelRenderer::Render(mjData& data, int camera_id, DepthImage* depth) {
   State& s = *state_;
-  s.egl.MakeCurrent();
+  if (!s.model) throw std::logic_error("ModelRenderer::Render before SetModel");
+  internal::EglContext::Scope current(s.egl);
   s.camera.fixedcamid = camera_id;
-  mjv_updateScene(&s.model, &data, &s.option, nullptr, &s.camera, mjCAT_ALL, &s.scene);
+  mjv_updateScene(s.model, &data, &s.option, nullptr, &s.camera, mjCAT_ALL, &s.scene);
   const mjrRect viewport = {0, 0, s.width, s.height};
   mjr_render(viewport, &s.scene, &s.context);
   Image image{s.width, s.height, std::vector<uint8_t>(size_t(s.width) * s.height * 3)};
@@ -209,11 +227,9 @@ Image ModelRenderer::Render(mjData& data, int camera_id, DepthImage* depth) {
   FlipRows(image.rgb, s.width, s.height, 3);
   if (depth) {
     // MuJoCo's clipping planes scale with the model's extent.
-    CameraPose planes;
-    planes.near_m = s.model.vis.map.znear * s.model.stat.extent;
-    planes.far_m = s.model.vis.map.zfar * s.model.stat.extent;
+    const double extent = s.model->stat.extent;
     FlipRows(raw_depth, s.width, s.height, 1);
-    LinearizeDepth(raw_depth, planes);
+    LinearizeDepth(raw_depth, s.model->vis.map.znear * extent, s.model->vis.map.zfar * extent);
     *depth = DepthImage{s.width, s.height, std::move(raw_depth)};
   }
   return image;

@@ -37,11 +37,10 @@ void MoveJointsTo(World& world, const WorldArm& arm, const PandaJointVector& q_g
 }
 
 IkResult MoveTcpTo(World& world, const WorldArm& arm, const Eigen::Isometry3d& X_WTarget, double duration_s) {
-  DataPtr scratch = MakeData(*world.model);
-  mj_copyData(scratch.get(), world.model.get(), world.data.get());
+  mj_copyData(world.ik_scratch.get(), world.model.get(), world.data.get());
   PandaJointVector q_now;
   for (int i = 0; i < kPandaJoints; ++i) q_now[i] = world.data->ctrl[arm.index.actuator[i]];
-  IkResult ik = SolveArmIk(*world.model, *scratch, arm.index, X_WTarget, q_now);
+  IkResult ik = SolveArmIk(*world.model, *world.ik_scratch, arm.index, X_WTarget, q_now);
   if (ik.converged) MoveJointsTo(world, arm, ik.q_rad, duration_s);
   return ik;
 }

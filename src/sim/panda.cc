@@ -5,9 +5,14 @@
 
 #include <cmath>
 
+#include "sim/mjcf_text.h"
+
 namespace prs::sim {
 
 namespace {
+
+using internal::FormatQuat;
+using internal::FormatVector;
 
 constexpr double kPi = 3.14159265358979323846;
 constexpr double kLinkRadius_m = 0.055;
@@ -17,14 +22,6 @@ constexpr const char* kArmContact = R"(contype="2" conaffinity="1")";
 
 Eigen::Vector3d CalcChildOffset(const PandaDhRow& row) {
   return {row.a_m, -row.d_m * std::sin(row.alpha_rad), row.d_m * std::cos(row.alpha_rad)};
-}
-
-std::string FormatVector(const Eigen::Vector3d& v) {
-  return fmt::format("{:.9g} {:.9g} {:.9g}", v.x(), v.y(), v.z());
-}
-
-std::string FormatQuat(const Eigen::Quaterniond& q) {
-  return fmt::format("{:.12g} {:.12g} {:.12g} {:.12g}", q.w(), q.x(), q.y(), q.z());
 }
 
 // A capsule from the link's origin to the next joint's origin, or a ball when they coincide.

@@ -38,7 +38,7 @@ struct EpisodeEnd {
 struct TableCubeController::Episode {
   const TableCubeOptions& options;
   World world;
-  std::unique_ptr<render::ModelRenderer> renderer;
+  render::ModelRenderer* renderer = nullptr;
   int camera_id = -1;
   std::string cube;  // the cube's body name, for the classification only
   double last_sighting_error_m = 0;
@@ -178,7 +178,11 @@ TaskOutcome TableCubeController::Run(const lang::Scene& scene) {
   if (!cube) return {"no-cube", "the scene has no Cube object", {}};
   ep.cube = cube->name;
   ep.camera_id = 0;
-  ep.renderer = std::make_unique<render::ModelRenderer>(*world.model, options_.image_width, options_.image_height);
+  if (!renderer_) {
+    renderer_ = std::make_unique<render::ModelRenderer>(options_.image_width, options_.image_height);
+  }
+  renderer_->SetModel(*world.model);
+  ep.renderer = renderer_.get();
 
   TaskOutcome outcome{"success", "", {}};
   try {

@@ -13,6 +13,10 @@
 
 #include "lang/scene.h"
 
+namespace prs::render {
+class ModelRenderer;
+}
+
 namespace prs::sim {
 
 struct TableCubeOptions {
@@ -47,6 +51,8 @@ class TableCubeController {
  private:
   struct Episode;
   TableCubeOptions options_;
+  // Made on the first episode and kept: the OpenGL context outlives each episode's world.
+  std::unique_ptr<render::ModelRenderer> renderer_;
 };
 
 }  // namespace prs::sim

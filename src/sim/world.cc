@@ -6,6 +6,7 @@
 #include <stdexcept>
 
 #include "sim/control.h"
+#include "sim/mjcf_text.h"
 
 namespace prs::sim {
 
@@ -13,11 +14,11 @@ namespace {
 
 constexpr double kPi = 3.14159265358979323846;
 
-std::string FormatVector(const Eigen::Vector3d& v) { return fmt::format("{:.9g} {:.9g} {:.9g}", v.x(), v.y(), v.z()); }
+using internal::FormatQuat;
+using internal::FormatVector;
 
 // Four static walls around the tray's top face, in the tray's frame.
 std::string WriteTrayWalls(const exporting::Body& tray) {
-  const Eigen::Quaterniond& R = tray.R_WO;
   const double half_w = tray.size.x() / 2, half_l = tray.size.y() / 2, t = kTrayWallThickness_m;
   const double z = tray.size.z() / 2 + kTrayWallHeight_m / 2;
   const struct {
@@ -28,8 +29,8 @@ std::string WriteTrayWalls(const exporting::Body& tray) {
       {{0, -(half_l + t / 2), z}, {half_w, t / 2, kTrayWallHeight_m / 2}},
       {{0, half_l + t / 2, z}, {half_w, t / 2, kTrayWallHeight_m / 2}},
   };
-  std::string xml = fmt::format(R"(<body name="{}_walls" pos="{}" quat="{} {} {} {}">)", tray.name,
-                                FormatVector(tray.p_WO), R.w(), R.x(), R.y(), R.z());
+  std::string xml = fmt::format(R"(<body name="{}_walls" pos="{}" quat="{}">)", tray.name,
+                                FormatVector(tray.p_WO), FormatQuat(tray.R_WO));
   for (const auto& w : walls) {
     xml += fmt::format(R"(<geom type="box" pos="{}" size="{}" rgba="0.45 0.45 0.45 1"/>)",
                        FormatVector(w.p_TW), FormatVector(w.half));
@@ -95,6 +96,7 @@ World BuildWorld(exporting::ExportScene scene) {
   world.xml = WriteWorldMjcf(scene);
   world.model = LoadModelFromXml(world.xml);
   world.data = MakeData(*world.model);
+  world.ik_scratch = MakeData(*world.model);
   for (const exporting::Body& b : scene.bodies) {
     if (b.class_name != "Robot") continue;
     WorldArm arm{b.name, ArmNames(b), CalcArmMount(b), {}};

@@ -28,6 +28,7 @@ struct World {
   exporting::ExportScene scene;
   ModelPtr model;
   DataPtr data;
+  DataPtr ik_scratch;  // inverse kinematics' working state, made once per world
   std::vector<WorldArm> arms;
   std::string xml;  // the MJCF the model was compiled from, for debugging and --save-failures
 

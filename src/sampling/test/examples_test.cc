@@ -28,6 +28,14 @@ std::unique_ptr<lang::CompiledProgram> CompileExample(const std::string& name) {
   return diagnostics.has_errors() ? nullptr : std::move(program);
 }
 
+// The paper's baseline, with room for its rejections (about 85 per Table-Cube scene).
+SampleOptions NaiveOptions() {
+  SampleOptions naive;
+  naive.run.mode = lang::SamplingMode::kNaive;
+  naive.max_attempts = 100'000;
+  return naive;
+}
+
 // What every scene of every example must satisfy: no two boxes overlap (unless an object allows
 // collisions) and every box lies in the 3 m x 3 m x 3 m workspace of examples/model.prs.
 void ExpectNoCollisionsAndInsideWorkspace(const Scene& scene) {
@@ -153,10 +161,7 @@ TEST(ExamplesTest, TableCubeHoldsInEverySceneWithoutRejection) {
 TEST(ExamplesTest, TableCubeHoldsInEveryNaiveScene) {
   auto program = CompileExample("table_cube.prs");
   ASSERT_NE(program, nullptr);
-  SampleOptions naive;
-  naive.run.mode = lang::SamplingMode::kNaive;
-  naive.max_attempts = 100'000;
-  SceneSampler sampler(*program, naive);
+  SceneSampler sampler(*program, NaiveOptions());
   int64_t rejections = 0;
   for (uint64_t i = 0; i < 100; ++i) {
     const SampledScene sampled = sampler.Sample(1, i);
@@ -207,10 +212,7 @@ TEST(ExamplesTest, CubeIsUniformOverTheTrayRelativeToTheTray) {
 TEST(ExamplesTest, NaiveAndRegionSamplingAgreeInDistributionOnTableCube) {
   auto program = CompileExample("table_cube.prs");
   ASSERT_NE(program, nullptr);
-  SampleOptions naive;
-  naive.run.mode = lang::SamplingMode::kNaive;
-  naive.max_attempts = 100'000;
-  SceneSampler region_sampler(*program), naive_sampler(*program, naive);
+  SceneSampler region_sampler(*program), naive_sampler(*program, NaiveOptions());
   constexpr int kScenes = 400;
   std::vector<std::vector<double>> region(6), baseline(6);
   auto record = [](const Scene& scene, std::vector<std::vector<double>>& into) {

@@ -4,35 +4,22 @@
 #include <gtest/gtest.h>
 
 #include <algorithm>
-#include <cstdlib>
 #include <optional>
+#include <thread>
 
 #include "render/model_renderer.h"
-#include "sampling/sampler.h"
 #include "sim/perception.h"
 #include "sim/table_cube_controller.h"
+#include "sim/test/table_cube_scenes.h"
 #include "sim/world.h"
 
 namespace prs::sim {
 namespace {
 
-std::string SourceDir() {
-  const char* dir = std::getenv("PRS_SOURCE_DIR");
-  return dir ? dir : PRS_DEFAULT_SOURCE_DIR;
-}
-
 class ControllerTest : public ::testing::Test {
  protected:
-  static void SetUpTestSuite() {
-    lang::DiagnosticEngine diagnostics;
-    program_ = lang::CompileFile(SourceDir() + "/examples/table_cube.prs", {}, diagnostics).release();
-    ASSERT_FALSE(diagnostics.has_errors());
-  }
-  static void TearDownTestSuite() { delete program_; }
-  static lang::Scene Scene(uint64_t index) { return sampling::SampleScene(*program_, 1, index).scene; }
-  static lang::CompiledProgram* program_;
+  static lang::Scene Scene(uint64_t index) { return testing_scenes::SampleTableCube(index); }
 };
-lang::CompiledProgram* ControllerTest::program_ = nullptr;
 
 // Scene 0 of seed 1 has the cube well inside the camera's view; scene 3 has it beyond the left
 // edge of the view (x = -0.68 m with a 45° vertical field of view from 2 m up).
@@ -88,6 +75,25 @@ TEST_F(ControllerTest, EpisodesAreDeterministic) {
   const TaskOutcome b = controller.Run(Scene(kVisibleScene));
   EXPECT_EQ(a.outcome, b.outcome);
   EXPECT_EQ(a.metrics, b.metrics);
+}
+
+// prs test keeps controllers in a pool, so one controller (and its OpenGL context) runs
+// episodes on one worker thread after another.
+TEST_F(ControllerTest, AControllerRunsOnAnotherThreadAfterThisOne) {
+  TableCubeController controller;
+  const TaskOutcome here = controller.Run(Scene(kVisibleScene));
+  TaskOutcome there;
+  std::string error;
+  std::thread([&] {
+    try {
+      there = controller.Run(Scene(kVisibleScene));
+    } catch (const std::exception& e) {
+      error = e.what();
+    }
+  }).join();
+  EXPECT_EQ(error, "");
+  EXPECT_EQ(there.outcome, here.outcome);
+  EXPECT_EQ(there.metrics, here.metrics);
 }
 
 }  // namespace

@@ -2,43 +2,23 @@
 // an arm stands on each robot, trays have walls, and the world rests under gravity.
 #include <gtest/gtest.h>
 
-#include <cstdlib>
-
-#include "sampling/sampler.h"
 #include "sim/control.h"
+#include "sim/test/table_cube_scenes.h"
 #include "sim/world.h"
 
 namespace prs::sim {
 namespace {
 
-std::string SourceDir() {
-  const char* dir = std::getenv("PRS_SOURCE_DIR");
-  return dir ? dir : PRS_DEFAULT_SOURCE_DIR;
-}
-
-// Table-Cube scene `index` of seed 1, with its program kept alive for the scene's classes.
-struct SampledWorldScene {
-  std::unique_ptr<lang::CompiledProgram> program;
-  sampling::SampledScene sampled;
-};
-
-SampledWorldScene SampleTableCube(uint64_t index) {
-  lang::DiagnosticEngine diagnostics;
-  SampledWorldScene s;
-  s.program = lang::CompileFile(SourceDir() + "/examples/table_cube.prs", {}, diagnostics);
-  EXPECT_FALSE(diagnostics.has_errors());
-  s.sampled = sampling::SampleScene(*s.program, 1, index);
-  return s;
-}
+using testing_scenes::SampleTableCube;
 
 Eigen::Vector3d BodyPosition(const World& world, const std::string& name) {
   return Eigen::Map<const Eigen::Vector3d>(world.data->xpos + 3 * world.body(name));
 }
 
 TEST(WorldTest, EveryObjectIsWhereTheSceneSaysAndArmsStandOnRobots) {
-  const SampledWorldScene s = SampleTableCube(0);
-  World world = BuildWorld(exporting::MakeExportScene(s.sampled.scene, "test"));
-  ASSERT_EQ(world.scene.bodies.size(), s.sampled.scene.objects.size());
+  const lang::Scene scene = SampleTableCube(0);
+  World world = BuildWorld(exporting::MakeExportScene(scene, "test"));
+  ASSERT_EQ(world.scene.bodies.size(), scene.objects.size());
   for (const exporting::Body& b : world.scene.bodies) {
     EXPECT_LT((BodyPosition(world, b.name) - b.p_WO).norm(), 1e-9) << b.name;
   }
@@ -59,8 +39,7 @@ TEST(WorldTest, EveryObjectIsWhereTheSceneSaysAndArmsStandOnRobots) {
 
 TEST(WorldTest, TheWorldRestsUnderGravity) {
   for (uint64_t index = 0; index < 5; ++index) {
-    const SampledWorldScene s = SampleTableCube(index);
-    World world = BuildWorld(exporting::MakeExportScene(s.sampled.scene, "test"));
+    World world = BuildWorld(exporting::MakeExportScene(SampleTableCube(index), "test"));
     const exporting::Body* cube = world.FindFirst("Cube");
     ASSERT_NE(cube, nullptr);
     std::vector<Eigen::Vector3d> p_tcp_start;
