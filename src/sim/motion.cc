@@ -2,13 +2,14 @@
 #include "sim/motion.h"
 
 #include <cmath>
+#include <numbers>
 
 #include "sim/control.h"
 
 namespace prs::sim {
 
 namespace {
-constexpr double kPi = 3.14159265358979323846;
+constexpr double kPi = std::numbers::pi;
 constexpr double kSettle_s = 0.2;
 }  // namespace
 

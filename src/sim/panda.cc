@@ -4,6 +4,7 @@
 #include <fmt/format.h>
 
 #include <cmath>
+#include <numbers>
 
 #include "sim/mjcf_text.h"
 
@@ -14,7 +15,7 @@ namespace {
 using internal::FormatQuat;
 using internal::FormatVector;
 
-constexpr double kPi = 3.14159265358979323846;
+constexpr double kPi = std::numbers::pi;
 constexpr double kLinkRadius_m = 0.055;
 // Contact groups: the arm touches the world (and the cube) but not itself, as its simple link
 // shapes overlap at the joints.

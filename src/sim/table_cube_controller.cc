@@ -16,13 +16,17 @@ namespace prs::sim {
 
 namespace {
 
-constexpr double kPi = 3.14159265358979323846;
 constexpr double kApproachHeight_m = 0.12;  // above the cube before descending
 constexpr double kLiftHeight_m = 0.15;
 constexpr double kMove_s = 1.2;
 constexpr double kDescend_s = 0.8;
-// The ready pose turned to face backwards: the arm no longer reaches over the table.
-const PandaJointVector kClearViewPose_rad = {2.8, -kPi / 4, 0, -3 * kPi / 4, 0, kPi / 2, kPi / 4};
+// The ready pose turned to face backwards (joint 1 near its limit): the arm no longer reaches
+// over the table.
+PandaJointVector CalcClearViewPose() {
+  PandaJointVector q = kPandaReadyPose_rad;
+  q[0] = 2.8;
+  return q;
+}
 
 // Thrown inside an episode to end it with an outcome.
 struct EpisodeEnd {
@@ -51,7 +55,7 @@ struct TableCubeController::Episode {
   // The cube's centre as the camera sees it, or a perception fault. `metric` names the
   // sighting's error in the outcome's metrics.
   Eigen::Vector3d See(const std::string& when, const std::string& metric) {
-    if (options.clear_view_before_sighting) SetAllArms(kClearViewPose_rad);
+    if (options.clear_view_before_sighting) SetAllArms(CalcClearViewPose());
     render::DepthImage depth;
     const render::Image image = renderer->Render(*world.data, camera_id, &depth);
     const PinholeCamera camera = GetMujocoCamera(*world.model, *world.data, camera_id, image.width, image.height);

@@ -3,6 +3,7 @@
 
 #include <fmt/format.h>
 
+#include <numbers>
 #include <stdexcept>
 
 #include "sim/control.h"
@@ -12,7 +13,7 @@ namespace prs::sim {
 
 namespace {
 
-constexpr double kPi = 3.14159265358979323846;
+constexpr double kPi = std::numbers::pi;
 
 using internal::FormatQuat;
 using internal::FormatVector;

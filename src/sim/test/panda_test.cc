@@ -1,9 +1,10 @@
 // The simulated Panda: its MuJoCo body tree matches the published kinematics, inverse
 // kinematics reaches what is reachable and reports what is not, and the servos with gravity
 // compensation hold a pose.
+#include <fmt/format.h>
 #include <gtest/gtest.h>
 
-#include <fmt/format.h>
+#include <numbers>
 
 #include "geometry/random.h"
 #include "sim/control.h"
@@ -12,7 +13,7 @@
 namespace prs::sim {
 namespace {
 
-constexpr double kPi = 3.14159265358979323846;
+constexpr double kPi = std::numbers::pi;
 
 // A floor and one arm whose base is at X_WBase.
 std::string WriteOneArmWorld(const PandaNames& names, const Eigen::Vector3d& p_WBase,
