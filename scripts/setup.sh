@@ -23,6 +23,7 @@ packages=(
   libegl-dev libegl-mesa0 libgl1-mesa-dri  # prs render: MuJoCo's renderer on EGL with
                          # Mesa's software rasteriser (llvmpipe), no GPU or display
   libpng-dev             # prs render: PNG files
+  ccache                 # compiler cache: rebuilds and fresh clones reuse earlier objects
   python3                # prs test's example controller (examples/controllers/reach_check.py) in the tests
 )
 # prs view bundles three.js with npm at build time; keep a Node.js that is already installed

@@ -1,8 +1,11 @@
-// `prs check`: compiles a scenario, prints its errors (exit 1) or an outline on stdout: the
-// creation sites with their position regions (static), the properties that varied over N
-// sampled scenes (empirical; -n 0 skips it), and the classes.
+// `prs check`: compiles a scenario and samples N trial scenes, then prints its errors (exit 1,
+// or 3 for a sampling failure) and an outline on stdout: the creation sites with their position
+// regions (static), the properties that varied over the N scenes (-n 0 skips them), the classes.
+#include <fmt/format.h>
+
 #include <iostream>
 #include <memory>
+#include <optional>
 
 #include "cli/check_report.h"
 #include "cli/commands.h"
@@ -30,38 +33,57 @@ VariationObserver ObserveScenes(const lang::CompiledProgram& program, const Chec
   return observer;
 }
 
-// Prints the observed variation; a run-time error or a sampling failure is reported as by
-// `prs sample` (exit 1 or 3), since a scenario that cannot be sampled is not ok.
-int PrintObservedVariation(const lang::CompiledProgram& program, const CheckArgs& args,
-                           const ScenarioOutline& outline) {
-  if (args.count == 0) {
-    std::cout << "\nrandom properties: not observed (-n 0)\n";
-    return kExitSuccess;
-  }
+// What the trial sampling found: the variation, or the error that stopped it.
+struct Observation {
+  std::optional<VariationObserver> observed;
+  std::optional<lang::ScenarioError> error;
+  int interrupted_by = 0;  // a signal number
+};
+
+Observation Observe(const lang::CompiledProgram& program, const CheckArgs& args) {
+  Observation o;
+  if (args.count == 0) return o;
   InterruptWatch interrupt;
   try {
-    const VariationObserver observed = ObserveScenes(program, args, interrupt.flag());
-    std::cout << FormatRandomSection(outline, observed, args.sampling.seed, program.sources);
-    return kExitSuccess;
+    o.observed = ObserveScenes(program, args, interrupt.flag());
   } catch (const lang::ScenarioError& error) {
-    std::cout << "\nrandom properties: not observed, sampling failed (the error is on stderr)\n";
-    std::cout.flush();
-    return ReportScenarioError(error, program.sources);
+    o.error = error;
   } catch (const sampling::BatchCancelled&) {
-    PrintNote("interrupted");
-    return kExitInterruptedBase + interrupt.signal_number();
+    o.interrupted_by = interrupt.signal_number();
   }
+  return o;
+}
+
+// The first line says one thing: "ok" only when the program compiled and its trial scenes
+// sampled; "compiles" when sampling was skipped (-n 0) or failed (the error goes to stderr,
+// reported as by `prs sample`: exit 1 or 3).
+std::string Verdict(const CheckArgs& args, const Observation& o) {
+  if (o.observed) return fmt::format("ok, {} sampled", FormatCount(args.count, "scene"));
+  if (args.count == 0) return "compiles (not sampled: -n 0)";
+  if (o.error) return "compiles, but sampling fails (the error is on stderr)";
+  return "compiles (sampling interrupted)";
 }
 
 int RunCheck(const CheckArgs& args) {
   auto program = CompileScenario(args.scenario);
   if (!program) return kExitScenarioError;
   const ScenarioOutline outline = OutlineScenario(*program);
-  std::cout << FormatCheckHeader(args.scenario.file, *program, outline)
+  const Observation o = Observe(*program, args);
+  std::cout << FormatCheckHeader(args.scenario.file, Verdict(args, o), *program, outline)
             << FormatObjectsSection(outline, program->sources);
-  const int code = PrintObservedVariation(*program, args, outline);
+  if (o.observed) {
+    std::cout << FormatRandomSection(outline, *o.observed, args.sampling.seed, program->sources);
+  } else {
+    std::cout << "\nrandom properties: not observed\n";
+  }
   std::cout << FormatClassesSection(outline, program->sources);
-  return code;
+  std::cout.flush();
+  if (o.error) return ReportScenarioError(*o.error, program->sources);
+  if (o.interrupted_by) {
+    PrintNote("interrupted");
+    return kExitInterruptedBase + o.interrupted_by;
+  }
+  return kExitSuccess;
 }
 
 }  // namespace

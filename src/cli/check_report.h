@@ -17,9 +17,9 @@ using analysis::ScenarioOutline;
 using analysis::SiteVariation;
 using analysis::VariationObserver;
 
-/// "FILE: ok (M modules, C classes, S creation sites)".
-std::string FormatCheckHeader(const std::string& file, const lang::CompiledProgram& program,
-                              const ScenarioOutline& outline);
+/// "FILE: VERDICT (M modules, C classes, S creation sites)", e.g. VERDICT "ok, 20 scenes sampled".
+std::string FormatCheckHeader(const std::string& file, const std::string& verdict,
+                              const lang::CompiledProgram& program, const ScenarioOutline& outline);
 
 /// One row per creation site: where, variable, class, position specifiers, region kind.
 std::string FormatObjectsSection(const ScenarioOutline& outline,

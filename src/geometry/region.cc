@@ -301,6 +301,25 @@ ConvexRegion ErodeByBox(const ConvexRegion& region, const Eigen::Matrix3d& R_WB,
   return r;
 }
 
+ConvexRegion ErodeByRound(const ConvexRegion& region, const Eigen::Vector3d& axis,
+                          double radius) {
+  RequireExtent("ErodeByRound", "radius", radius);
+  RequireFinite("ErodeByRound", "axis", axis);
+  if (region.empty_) return ConvexRegion::Empty();
+  AffineHull hull;
+  if (!internal::CalcEqualityHull(region.equalities_, &hull)) return ConvexRegion::Empty();
+  const Eigen::Matrix3d P = hull.basis * hull.basis.transpose();
+  // K's support along v is radius·|Q·v|, Q projecting onto the disk's plane (I for a ball).
+  Eigen::Matrix3d Q = Eigen::Matrix3d::Identity();
+  if (axis.norm() > 0) Q -= axis.normalized() * axis.normalized().transpose();
+  ConvexRegion r = region;
+  r.canon_.reset();
+  r.kind_ = ConvexRegion::Kind::kEroded;
+  for (HalfSpace& h : r.half_spaces_) h.offset -= radius * (Q * (P * h.normal)).norm();
+  r.size_label_ = Eigen::Vector3d::Constant(radius);
+  return r;
+}
+
 const internal::RegionCanon& ConvexRegion::canon() const {
   if (!canon_) {
     if (empty_) {

@@ -140,6 +140,8 @@ class ConvexRegion {
   friend ConvexRegion Intersect(const ConvexRegion& a, const ConvexRegion& b);
   friend ConvexRegion ErodeByBox(const ConvexRegion& region, const Eigen::Matrix3d& R_WB,
                                  const Eigen::Vector3d& half_extents);
+  friend ConvexRegion ErodeByRound(const ConvexRegion& region, const Eigen::Vector3d& axis,
+                                   double radius);
   bool RawContains(const Eigen::Vector3d& p_W, double tolerance) const;
   std::string DescribeGeneric() const;
 
@@ -166,5 +168,15 @@ ConvexRegion Intersect(const ConvexRegion& a, const ConvexRegion& b);
 /// non-finite half_extents.
 ConvexRegion ErodeByBox(const ConvexRegion& region, const Eigen::Matrix3d& R_WB,
                         const Eigen::Vector3d& half_extents);
+
+/// Erosion by a round set K centred at the origin: the disk of `radius` in the plane normal to
+/// `axis` (a non-zero vector), or the ball of `radius` when `axis` is zero. Like ErodeByBox, K
+/// is first projected onto the region's affine hull. The half-spaces are eroded exactly (each
+/// offset shrinks by K's support along the normal); ball constraints are kept as they are,
+/// which holds every valid centre because K contains the origin. So the result is the exact
+/// erosion for polytopes and a superset when the region has balls. Used where the box's turn
+/// is not known yet: a disk inside the box is inside it for every turn about `axis`.
+/// Throws std::invalid_argument for a negative or non-finite radius or a non-finite axis.
+ConvexRegion ErodeByRound(const ConvexRegion& region, const Eigen::Vector3d& axis, double radius);
 
 }  // namespace prs::geometry

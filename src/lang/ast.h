@@ -2,6 +2,8 @@
 // produced by the parser and walked by later passes (resolver, interpreter).
 #pragma once
 
+#include <cstdint>
+#include <functional>
 #include <memory>
 #include <optional>
 #include <string>
@@ -143,6 +145,9 @@ struct Expr {
                SidePointExpr, RelativeToExpr, OffsetByExpr, DistanceExpr, ClassRef,
                CreateObject, CompareChain>
       node;
+  /// The height of this subtree: 1 for a leaf, one more than the tallest child otherwise. The
+  /// parser keeps it under a limit, which bounds every later recursive walk over the tree.
+  uint32_t height = 1;
 };
 
 // ---------------------------------------------------------------------------
@@ -224,6 +229,11 @@ struct Module {
   FileId file = 0;
   std::vector<StmtPtr> body;
 };
+
+/// Calls `visit` on each direct child expression of `expr` (specifier arguments included).
+void ForEachChild(const Expr& expr, const std::function<void(const Expr&)>& visit);
+/// Returns 1 + the largest `height` among `expr`'s direct children (1 for a leaf).
+uint32_t CalcExprHeight(const Expr& expr);
 
 /// Returns the source spelling of a side, e.g. "top back".
 std::string_view SideName(Side side);

@@ -1,8 +1,11 @@
 // A generic visitor over an expression's direct children, so passes that only care about a
-// few node kinds (self-reads, name checks) need not list every other kind.
-#include "lang/resolve_internal.h"
+// few node kinds (tree heights, self-reads, name checks) need not list every other kind.
+#include <algorithm>
+#include <functional>
 
-namespace prs::lang::internal {
+#include "lang/ast.h"
+
+namespace prs::lang {
 namespace {
 
 void VisitIf(const ExprPtr& e, const std::function<void(const Expr&)>& visit) {
@@ -63,4 +66,10 @@ void ForEachChild(const Expr& expr, const std::function<void(const Expr&)>& visi
       expr.node);
 }
 
-}  // namespace prs::lang::internal
+uint32_t CalcExprHeight(const Expr& expr) {
+  uint32_t tallest_child = 0;
+  ForEachChild(expr, [&](const Expr& child) { tallest_child = std::max(tallest_child, child.height); });
+  return tallest_child + 1;
+}
+
+}  // namespace prs::lang

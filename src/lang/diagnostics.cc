@@ -75,7 +75,46 @@ void RenderHeader(std::string* out, Severity severity, SourceSpan span, bool has
   out->push_back('\n');
 }
 
-// Appends the source line of span.begin, a caret line and, if any, the fix-it line.
+// The columns [first, first + count) of a long line that show the caret: Clang's habit of
+// printing a window of a long line rather than the whole of it.
+struct LineWindow {
+  uint32_t first = 0;
+  uint32_t count = 0;
+};
+
+// Picks the window of a `total`-column line that shows the caret at `caret_col` with some
+// context before it (and as much of the span after it as fits).
+LineWindow ChooseWindow(uint32_t total, uint32_t caret_col) {
+  constexpr uint32_t kMaxColumns = 120;
+  if (total <= kMaxColumns) return {0, total};
+  uint32_t first = caret_col > kMaxColumns / 3 ? caret_col - kMaxColumns / 3 : 0;
+  first = std::min(first, total - kMaxColumns);
+  return {first, kMaxColumns};
+}
+
+// Cuts the display columns of `window` out of `expanded` (a line with its tabs expanded),
+// marking each cut end with "...". Adds the width of the leading mark to *shift.
+std::string CutWindow(const std::string& expanded, LineWindow window, uint32_t total,
+                      uint32_t* shift) {
+  if (window.first == 0 && window.count == total) return expanded;
+  std::vector<uint32_t> columns;
+  ExpandTabs(expanded, &columns);  // no tabs left: just the column of each byte
+  size_t lo = 0, hi = expanded.size();
+  while (lo < expanded.size() && (columns[lo] < window.first || IsContinuationByte(expanded[lo]))) ++lo;
+  for (size_t i = lo; i < expanded.size(); ++i) {
+    if (columns[i] >= window.first + window.count && !IsContinuationByte(expanded[i])) {
+      hi = i;
+      break;
+    }
+  }
+  std::string cut = expanded.substr(lo, hi - lo);
+  if (window.first > 0) cut = "..." + cut, *shift += 3;
+  if (hi < expanded.size()) cut += "...";
+  return cut;
+}
+
+// Appends the source line of span.begin (a window of it when it is long), a caret line and,
+// if any, the fix-it line.
 void RenderSnippet(std::string* out, SourceSpan span, const std::string& fix_it,
                    const SourceManager& sources, bool color) {
   LineColumn lc = sources.CalcLineColumn(span.file, span.begin);
@@ -90,10 +129,17 @@ void RenderSnippet(std::string* out, SourceSpan span, const std::string& fix_it,
   uint32_t width = end > begin ? columns[end] - caret_col : 1;
   if (width == 0) width = 1;
 
+  const uint32_t total = columns[line.size()];
+  const LineWindow window = ChooseWindow(total, caret_col);
+  uint32_t shift = 0;
+  const std::string shown = CutWindow(expanded, window, total, &shift);
+  caret_col = caret_col - window.first + shift;
+  if (window.count < total) width = std::clamp<uint32_t>(width, 1, window.count + shift - caret_col);
+
   std::string gutter = fmt::format("{:>5} | ", lc.line);
   std::string blank(gutter.size() - 2, ' ');
   blank += "| ";
-  out->append(gutter).append(expanded).push_back('\n');
+  out->append(gutter).append(shown).push_back('\n');
   out->append(blank).append(caret_col, ' ');
   if (color) out->append(kGreen);
   out->push_back('^');

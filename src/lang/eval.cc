@@ -1,6 +1,7 @@
 // The interpreter's expression layer: literals, names, operators (with a 2-tuple of numbers
 // drawn as a uniform range where a number is expected), attributes, side points of objects,
 // `relative to`, `offset by` and `distance from`.
+#include <algorithm>
 #include <cmath>
 
 #include "lang/interp_internal.h"
@@ -9,7 +10,37 @@ namespace prs::lang::internal {
 
 using Eigen::Vector3d;
 
+// The parser bounds each tree's height and block depth, but calls nest trees and blocks inside
+// each other: bound the sum, so evaluation stays within a thread's stack.
+void Interpreter::EnterNested(SourceSpan span) {
+  if (eval_depth_ >= options_.limits.max_eval_depth) {
+    Fail(span, "limit-exceeded",
+         "expressions, blocks and function calls nested deeper than " +
+             std::to_string(options_.limits.max_eval_depth) +
+             " levels while evaluating; is this recursion meant to end?");
+  }
+  ++eval_depth_;
+}
+
+// A container nested in containers beyond the limit (built by a loop, `x = (x,)`) would
+// overflow the stack when printed, converted or freed: refuse it where it is built.
+Value Interpreter::CheckNesting(Value container, SourceSpan span) {
+  if (CalcContainerDepth(container) > kMaxContainerDepth) {
+    Fail(span, "limit-exceeded",
+         "tuples, lists or dicts nested more than " + std::to_string(kMaxContainerDepth) +
+             " levels deep; is a loop wrapping a value in itself?");
+  }
+  return container;
+}
+
 Value Interpreter::Eval(const Expr& expr) {
+  EnterNested(expr.span);
+  Value value = EvalNode(expr);
+  --eval_depth_;  // not restored on an exception: the attempt is over then
+  return value;
+}
+
+Value Interpreter::EvalNode(const Expr& expr) {
   return std::visit(
       [&](const auto& node) -> Value {
         using T = std::decay_t<decltype(node)>;
@@ -27,12 +58,16 @@ Value Interpreter::Eval(const Expr& expr) {
           std::vector<Value> elements;
           elements.reserve(node.elements.size());
           for (const ExprPtr& e : node.elements) elements.push_back(Eval(*e));
-          if constexpr (std::is_same_v<T, TupleExpr>) return MakeTuple(std::move(elements));
-          else return MakeList(std::move(elements));
+          if constexpr (std::is_same_v<T, TupleExpr>) return CheckNesting(MakeTuple(std::move(elements)), expr.span);
+          else return CheckNesting(MakeList(std::move(elements)), expr.span);
         } else if constexpr (std::is_same_v<T, DictExpr>) {
           auto dict = std::make_shared<DictData>();
-          for (const auto& [k, v] : node.entries) dict->entries.emplace_back(Eval(*k), Eval(*v));
-          return dict;
+          for (const auto& [k, v] : node.entries) {
+            dict->entries.emplace_back(Eval(*k), Eval(*v));
+            dict->depth = std::max({dict->depth, CalcContainerDepth(dict->entries.back().first) + 1,
+                                    CalcContainerDepth(dict->entries.back().second) + 1});
+          }
+          return CheckNesting(Value(std::move(dict)), expr.span);
         } else if constexpr (std::is_same_v<T, UnaryExpr>) {
           const Value operand = Eval(*node.operand);
           if (node.op == UnaryOp::kNot) return !Truthy(operand, expr.span);

@@ -110,11 +110,14 @@ bool Interpreter::IsSameInEveryScene(const Env& env) {
 }
 
 Flow Interpreter::ExecBody(const std::vector<StmtPtr>& body) {
+  if (!body.empty()) EnterNested(body.front()->span);
+  Flow flow = Flow::kNormal;
   for (const StmtPtr& stmt : body) {
-    const Flow flow = Exec(*stmt);
-    if (flow != Flow::kNormal) return flow;
+    flow = Exec(*stmt);
+    if (flow != Flow::kNormal) break;
   }
-  return Flow::kNormal;
+  if (!body.empty()) --eval_depth_;
+  return flow;
 }
 
 Flow Interpreter::Exec(const Stmt& stmt) {

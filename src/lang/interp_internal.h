@@ -35,6 +35,24 @@ struct PositionConstraint {
   /// Naive mode only: where a lower-dimensional specifier's draw comes from when it differs
   /// from `region` (for `completely on`, the whole face before erosion).
   std::optional<geometry::ConvexRegion> naive_domain;
+  /// Set while the orientation is still open (ObjectPlan::open_turn): the region the object's
+  /// whole box must lie in, tested exactly once the orientation is known. `region` then holds
+  /// a superset of the valid centres.
+  std::optional<geometry::ConvexRegion> box_region;
+};
+
+/// A round set inside the object's box for every turn its open orientation may take: the disk
+/// of `radius` normal to `axis`, or the ball of `radius` when `axis` is zero.
+struct RoundCore {
+  Eigen::Vector3d axis;
+  double radius;
+};
+
+/// A `completely on` or side specifier whose exact test waits for the object's orientation.
+struct OpenTurnCheck {
+  int index;  // the object
+  const Specifier* specifier;
+  geometry::ConvexRegion box_region;  // where the whole box must lie
 };
 
 class Interpreter {
@@ -45,7 +63,11 @@ class Interpreter {
   static bool IsSameInEveryScene(const Env& env);
 
   // --- expressions (eval.cc) ---
-  Value Eval(const Expr& expr);
+  void EnterNested(SourceSpan span);  // ++eval_depth_, or a limit error
+  Value Eval(const Expr& expr);      // EnterNested, then EvalNode
+  Value EvalNode(const Expr& expr);
+  static constexpr int kMaxContainerDepth = 1000;
+  Value CheckNesting(Value container, SourceSpan span);  // a limit error past kMaxContainerDepth
   double ToNumber(const Value& v, SourceSpan span, const std::string& what);
   Eigen::Vector3d ToVector(const Value& v, SourceSpan span, const std::string& what);
   Eigen::Quaterniond ToOrientation(const Value& v, SourceSpan span, const std::string& what);
@@ -131,9 +153,17 @@ class Interpreter {
 
   // --- placement (placement.cc) ---
   Eigen::Vector3d PlacePosition(const ObjectPlan& plan, int index, SourceSpan span);
-  PositionConstraint EvalPositionConstraint(const Specifier& s, int index);
-  PositionConstraint EvalOnConstraint(const Specifier& s, int index, bool completely);
-  PositionConstraint EvalSideConstraint(const Specifier& s, int index);
+  PositionConstraint EvalPositionConstraint(const Specifier& s, int index, ObjectPlan::OpenTurn open);
+  PositionConstraint EvalOnConstraint(const Specifier& s, int index, bool completely,
+                                      ObjectPlan::OpenTurn open);
+  PositionConstraint EvalSideConstraint(const Specifier& s, int index, ObjectPlan::OpenTurn open);
+  // The centres for which the object's box lies in `box_region`: exact when the orientation
+  // is known, else a superset for every turn it may take (the exact test is kept in c).
+  geometry::ConvexRegion ErodeByOwnBox(const geometry::ConvexRegion& box_region, int index,
+                                       ObjectPlan::OpenTurn open, PositionConstraint& c);
+  RoundCore CalcRoundCore(int index, ObjectPlan::OpenTurn open);
+  // Once the orientation is known: the exact tests the position was drawn without.
+  void CheckOpenTurn(int index);
   Eigen::Vector3d SampleRegion(const std::vector<PositionConstraint>& constraints,
                                const geometry::ConvexRegion& region,
                                const geometry::ConvexRegion* workspace, int index, SourceSpan span);
@@ -183,11 +213,13 @@ class Interpreter {
   SourceSpan current_statement_;  // for errors raised below the statement layer
   int self_index_ = -1;              // the object whose defaults are being evaluated
   int call_depth_ = 0;
+  int eval_depth_ = 0;  // nested Eval calls, across function calls
   int64_t loop_iterations_ = 0;
   int64_t draws_ = 0;
   // Naive mode: the first specifier found not to hold. As in the paper's tool, specifiers are
   // checked as constraints once the scene is complete, after collisions and the workspace.
   std::optional<Rejection> naive_violation_;
+  std::vector<OpenTurnCheck> open_turn_checks_;  // see ObjectPlan::open_turn
   Value return_value_;
 };
 

@@ -49,6 +49,9 @@ std::unique_ptr<CompiledProgram> CompileText(const std::string& path, std::strin
 struct RunLimits {
   int64_t max_loop_iterations = 1'000'000;  // all loops of one attempt together
   int max_call_depth = 100;
+  /// Nested expression evaluations, function calls included (each tree's own height is
+  /// bounded by the parser): keeps evaluation within a thread's stack, sanitizers included.
+  int max_eval_depth = 2000;
   int max_objects = 10'000;
 };
 

@@ -39,6 +39,9 @@ Value Interpreter::CreateObject(const ObjectPlan& plan, SourceSpan span) {
       SetProperty(index, "position", Value(p), span);
     } else {
       RunPlanStep(step, index, span);
+      if (step.kind == PlanStepKind::kOrientation && plan.open_turn != ObjectPlan::OpenTurn::kNone) {
+        CheckOpenTurn(index);
+      }
     }
   }
   FinishObject(index, span);

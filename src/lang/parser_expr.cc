@@ -97,7 +97,24 @@ Parser::NestingGuard::NestingGuard(Parser* parser) : parser_(parser) {
 
 ExprPtr Parser::MakeBinary(BinaryOp op, ExprPtr lhs, ExprPtr rhs, SourceSpan op_span) {
   SourceSpan span = Join(lhs->span, rhs->span);
-  return std::make_unique<Expr>(Expr{span, BinaryExpr{op, std::move(lhs), std::move(rhs), op_span}});
+  return WithHeight(
+      std::make_unique<Expr>(Expr{span, BinaryExpr{op, std::move(lhs), std::move(rhs), op_span}}));
+}
+
+// Sets a new node's height and refuses a tree taller than kMaxExprHeight, pointing at the token
+// that made it too tall. Refusing here, while the tree is still short, keeps every later walk
+// over it (and its destruction) within the stack.
+ExprPtr Parser::WithHeight(ExprPtr e) {
+  e->height = CalcExprHeight(*e);
+  if (e->height > kMaxExprHeight) {
+    const SourceSpan last = tokens_[pos_ > 0 ? pos_ - 1 : 0].span;
+    Fail("too-deeply-nested", last,
+         fmt::format("expression nested too deeply: more than {} levels of operators, calls, "
+                     "subscripts or brackets; split it into several statements",
+                     kMaxExprHeight),
+         "");
+  }
+  return e;
 }
 
 // or_expr := and_expr {'or' and_expr}
@@ -224,6 +241,7 @@ ExprPtr Parser::ParsePower() {
   ExprPtr base = ParsePostfix();
   if (!Check(TK::kDoubleStar)) return base;
   SourceSpan op = Advance().span;
+  NestingGuard guard(this);  // `a ** b ** c ...` recurses once per operator
   return MakeBinary(BinaryOp::kPow, std::move(base), ParseUnary(), op);
 }
 

@@ -107,8 +107,9 @@ class Parser {
   bool CanStartOperand(size_t ahead) const;
   void RejectComprehension(std::string_view what);
   ExprPtr MakeExpr(uint32_t begin, auto node) {
-    return std::make_unique<Expr>(Expr{SpanFrom(begin), std::move(node)});
+    return WithHeight(std::make_unique<Expr>(Expr{SpanFrom(begin), std::move(node)}));
   }
+  ExprPtr WithHeight(ExprPtr e);
   ExprPtr MakeBinary(BinaryOp op, ExprPtr lhs, ExprPtr rhs, SourceSpan op_span);
 
   // ---- object creation ----
@@ -141,6 +142,10 @@ class Parser {
   bool failed_import_ = false;
   static constexpr int kMaxNesting = 100;     // nested blocks
   static constexpr int kMaxExprDepth = 400;  // nested expression routines (not tokens)
+  // The tallest expression tree (Expr::height) a program may build: long flat chains
+  // (`1 + 1 + ...`, `f()()...`, `a[0][0]...`) build trees as deep as nested brackets do, and
+  // the resolver, interpreter and destructors walk trees recursively.
+  static constexpr uint32_t kMaxExprHeight = 400;
   int expr_depth_ = 0;
   int block_depth_ = 0;
   int function_depth_ = 0;

@@ -3,7 +3,9 @@
 // result uniformly. In naive mode, positions come from the workspace (or from the region of a
 // lower-dimensional specifier such as `on`) and every specifier is checked afterwards instead
 // (the paper's baseline).
+#include <algorithm>
 #include <cmath>
+#include <limits>
 
 #include "lang/interp_internal.h"
 
@@ -55,7 +57,10 @@ Vector3d Interpreter::PlacePosition(const ObjectPlan& plan, int index, SourceSpa
   }
   std::vector<PositionConstraint> constraints;
   for (const Specifier* s : plan.position_specifiers) {
-    constraints.push_back(EvalPositionConstraint(*s, index));
+    constraints.push_back(EvalPositionConstraint(*s, index, plan.open_turn));
+    if (constraints.back().box_region) {
+      open_turn_checks_.push_back({index, s, *constraints.back().box_region});
+    }
   }
   if (options_.mode == SamplingMode::kNaive) return SampleNaive(constraints, index, span);
   ConvexRegion region = ConvexRegion::All();
@@ -117,7 +122,8 @@ Vector3d Interpreter::SampleRegion(const std::vector<PositionConstraint>& constr
   }
 }
 
-PositionConstraint Interpreter::EvalPositionConstraint(const Specifier& s, int index) {
+PositionConstraint Interpreter::EvalPositionConstraint(const Specifier& s, int index,
+                                                       ObjectPlan::OpenTurn open) {
   PositionConstraint c;
   c.specifier = &s;
   switch (s.kind) {
@@ -136,7 +142,7 @@ PositionConstraint Interpreter::EvalPositionConstraint(const Specifier& s, int i
     }
     case SpecifierKind::kOn:
     case SpecifierKind::kCompletelyOn:
-      return EvalOnConstraint(s, index, s.kind == SpecifierKind::kCompletelyOn);
+      return EvalOnConstraint(s, index, s.kind == SpecifierKind::kCompletelyOn, open);
     case SpecifierKind::kAlignedWith: {
       const Vector3d p = EvalVector(*s.target, "the argument of 'aligned with'");
       const std::string& axis = s.axis ? s.axis->name : "";
@@ -164,12 +170,13 @@ PositionConstraint Interpreter::EvalPositionConstraint(const Specifier& s, int i
       return c;
     }
     default:
-      return EvalSideConstraint(s, index);
+      return EvalSideConstraint(s, index, open);
   }
 }
 
 // `on X` / `completely on X`: X's top face (or a planar region) lifted by half the height.
-PositionConstraint Interpreter::EvalOnConstraint(const Specifier& s, int index, bool completely) {
+PositionConstraint Interpreter::EvalOnConstraint(const Specifier& s, int index, bool completely,
+                                                 ObjectPlan::OpenTurn open) {
   PositionConstraint c;
   c.specifier = &s;
   const SceneObject& self = scene_.objects[index];
@@ -204,15 +211,15 @@ PositionConstraint Interpreter::EvalOnConstraint(const Specifier& s, int index, 
   }
   if (completely) {
     if (options_.mode == SamplingMode::kNaive) c.naive_domain = c.region;
-    const geometry::OrientedBox box = BoxOf(index);
-    c.region = geometry::ErodeByBox(c.region, box.R_WB, box.half_extents);
+    c.region = ErodeByOwnBox(c.region, index, open, c);
   }
   return c;
 }
 
 // left of / right of / ahead of / behind / above / below X [by d]: a half-space beyond the
 // plane through X's centre, pushed out by d plus the object's own extent along the normal.
-PositionConstraint Interpreter::EvalSideConstraint(const Specifier& s, int index) {
+PositionConstraint Interpreter::EvalSideConstraint(const Specifier& s, int index,
+                                                   ObjectPlan::OpenTurn open) {
   PositionConstraint c;
   c.specifier = &s;
   const Value target = Eval(*s.target);
@@ -229,10 +236,71 @@ PositionConstraint Interpreter::EvalSideConstraint(const Specifier& s, int index
     default: normal = -R.col(2); break;
   }
   const double d = s.distance ? EvalNumber(*s.distance, "the distance after 'by'") : 0.0;
-  const geometry::OrientedBox box = BoxOf(index);
-  const double extent = geometry::CalcBoxSupport(box.R_WB, box.half_extents, normal);
+  // The whole box beyond the plane pushed out by d: its centre beyond it by the box's extent
+  // (while the orientation is open, by the extent of a round core inside every turn of it).
+  double extent = 0;
+  if (open == ObjectPlan::OpenTurn::kNone) {
+    const geometry::OrientedBox box = BoxOf(index);
+    extent = geometry::CalcBoxSupport(box.R_WB, box.half_extents, normal);
+  } else {
+    c.box_region = ConvexRegion::MakeHalfSpace(frame.p_W + normal * d, normal);
+    const RoundCore core = CalcRoundCore(index, open);
+    extent = core.radius * (normal - normal.dot(core.axis) * core.axis).norm();
+  }
   c.region = ConvexRegion::MakeHalfSpace(frame.p_W + normal * (d + extent), normal);
   return c;
+}
+
+ConvexRegion Interpreter::ErodeByOwnBox(const ConvexRegion& box_region, int index,
+                                        ObjectPlan::OpenTurn open, PositionConstraint& c) {
+  if (open == ObjectPlan::OpenTurn::kNone) {
+    const geometry::OrientedBox box = BoxOf(index);
+    return geometry::ErodeByBox(box_region, box.R_WB, box.half_extents);
+  }
+  c.box_region = box_region;
+  const RoundCore core = CalcRoundCore(index, open);
+  return geometry::ErodeByRound(box_region, core.axis, core.radius);
+}
+
+RoundCore Interpreter::CalcRoundCore(int index, ObjectPlan::OpenTurn open) {
+  const SceneObject& o = scene_.objects[index];
+  const Vector3d half_extents = o.dimensions / 2;
+  if (open == ObjectPlan::OpenTurn::kAny) return {Vector3d::Zero(), half_extents.minCoeff()};
+  // Pitch and roll are known: the largest horizontal disk about the centre inside the tilted
+  // box is inside it for every turn about z.
+  auto angle = [&](const char* name) {
+    return o.cls->FindDefault(name) ? ToNumber(GetProperty(index, name, {}), o.span, name) : 0.0;
+  };
+  const Matrix3d R_tilt = geometry::CalcRotationFromYawPitchRoll(0, angle("pitch"), angle("roll"));
+  double radius = std::numeric_limits<double>::infinity();
+  for (int i = 0; i < 3; ++i) {
+    const double horizontal = R_tilt.col(i).head<2>().norm();
+    if (horizontal > 1e-12) radius = std::min(radius, half_extents[i] / horizontal);
+  }
+  return {Vector3d::UnitZ(), radius};
+}
+
+void Interpreter::CheckOpenTurn(int index) {
+  const geometry::OrientedBox box = BoxOf(index);
+  for (const OpenTurnCheck& check : open_turn_checks_) {
+    if (check.index != index) continue;
+    if (geometry::ErodeByBox(check.box_region, box.R_WB, box.half_extents).Contains(box.p_center, 1e-9)) {
+      continue;
+    }
+    const RejectionKind kind = IsSideSpecifier(check.specifier->kind) ? RejectionKind::kRelativePosition
+                                                                       : RejectionKind::kContainment;
+    std::string culprit = scene_.objects[index].DisplayName(index) + " " +
+                          DescribeSpecifier(*check.specifier, program_.sources);
+    const std::string detail = "with the orientation it turned to, " + DescribeBox(index) +
+                               " does not fit " + DescribeSpecifier(*check.specifier, program_.sources);
+    if (options_.mode == SamplingMode::kNaive) {
+      if (!naive_violation_) naive_violation_ = Rejection{kind, std::move(culprit), check.specifier->span, detail};
+      continue;
+    }
+    open_turn_checks_.clear();
+    Reject(kind, std::move(culprit), check.specifier->span, detail);
+  }
+  std::erase_if(open_turn_checks_, [&](const OpenTurnCheck& c) { return c.index == index; });
 }
 
 Diagnostic Interpreter::ExplainEmptyRegion(const std::vector<PositionConstraint>& constraints,

@@ -1,6 +1,7 @@
 // The creation planner: decides where each property of an object comes from (a class default,
 // a `with`, the position specifiers together, the orientation) and orders them so that every
 // property is computed after the ones it reads. Cycles and duplicate sources are errors.
+#include <algorithm>
 #include <map>
 #include <set>
 
@@ -55,6 +56,7 @@ class Planner {
     if (!AddSpecifiers(plan)) return false;
     AddPositionAndOrientation(plan);
     DropUnknownReads();
+    BreakPositionOrientationCycle(plan);
     plan.fold_workspace = cls_.has_box && !DependsOn("orientation", "position");
     if (plan.fold_workspace && sources_.count("position")) {
       auto& reads = sources_["position"].reads;
@@ -141,6 +143,36 @@ class Planner {
       }
     }
     for (const char* angle : {"yaw", "pitch", "roll"}) orientation.reads.push_back(angle);
+  }
+
+  // `completely on X, facing toward Y`: the position needs the orientation for the box's
+  // footprint, and the orientation needs the position. When nothing else closes the loop,
+  // the position reads only what a yaw-independent superset needs (ObjectPlan::open_turn).
+  void BreakPositionOrientationCycle(ObjectPlan& plan) {
+    auto position = sources_.find("position");
+    if (position == sources_.end() || !sources_.count("orientation")) return;
+    std::vector<std::string>& reads = position->second.reads;
+    const auto reads_orientation = std::remove(reads.begin(), reads.end(), "orientation");
+    if (reads_orientation == reads.end()) return;
+    reads.erase(reads_orientation, reads.end());
+    if (!DependsOn("orientation", "position")) {
+      reads.push_back("orientation");
+      return;
+    }
+    const PropertyDefault* base = cls_.FindDefault("orientation");
+    const bool turns_about_z =
+        orientation_specifier_ ? orientation_specifier_->kind == SpecifierKind::kFacingToward
+                               : !(base && base->expr);
+    const bool tilt_known = (!sources_.count("pitch") || !DependsOn("pitch", "position")) &&
+                            (!sources_.count("roll") || !DependsOn("roll", "position"));
+    if (turns_about_z && tilt_known) {
+      plan.open_turn = ObjectPlan::OpenTurn::kYaw;
+      for (const char* angle : {"pitch", "roll"}) {
+        if (sources_.count(angle)) reads.push_back(angle);
+      }
+    } else {
+      plan.open_turn = ObjectPlan::OpenTurn::kAny;
+    }
   }
 
   // A point has no width; reads of properties the class lacks are not dependencies.

@@ -67,6 +67,15 @@ struct ObjectPlan {
   bool region_fixed = false;
   /// Every property, the position included, is the same in every scene: a fixed obstacle.
   bool object_fixed = false;
+  /// Set when the orientation reads the position while a position specifier needs the box's
+  /// orientation (`completely on X, facing toward Y`; spec §7): the position is drawn from a
+  /// superset of the valid centres that holds for every orientation the object may take, and
+  /// the exact test runs once the orientation is known, rejecting the attempt when it fails.
+  /// kYaw: only a turn about the vertical is open (pitch and roll are known first), so the
+  /// superset erodes by the largest horizontal disk inside the box; kAny: any turn, so it
+  /// erodes by the box's inscribed ball.
+  enum class OpenTurn { kNone, kYaw, kAny };
+  OpenTurn open_turn = OpenTurn::kNone;
 };
 
 /// A parsed module (the main file or an imported one).

@@ -24,7 +24,7 @@ void CollectSelfReads(const Expr& expr, std::vector<std::string>& reads) {
       return;
     }
   }
-  internal::ForEachChild(expr, [&](const Expr& child) { CollectSelfReads(child, reads); });
+  ForEachChild(expr, [&](const Expr& child) { CollectSelfReads(child, reads); });
 }
 
 ClassInfo* AddBuiltinClass(CompiledProgram& program, const std::string& name,

@@ -1,5 +1,4 @@
-// Internals shared by the resolver's files: a generic child-expression visitor, the name
-// checker, and the object-creation planner.
+// Internals shared by the resolver's files: the name checker and the object-creation planner.
 #pragma once
 
 #include <functional>
@@ -12,9 +11,6 @@
 #include "lang/program.h"
 
 namespace prs::lang::internal {
-
-/// Calls `visit` on each direct child expression of `expr` (specifier arguments included).
-void ForEachChild(const Expr& expr, const std::function<void(const Expr&)>& visit);
 
 /// Adds the names bound at the top level of `body` (descending into if/for/while blocks, not
 /// into nested functions) to `names`; `from M import *` adds M's globals.

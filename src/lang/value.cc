@@ -2,6 +2,7 @@
 // messages, and a short printable form.
 #include "lang/value.h"
 
+#include <algorithm>
 #include <cmath>
 #include <cstdio>
 
@@ -11,14 +12,33 @@ namespace prs::lang {
 
 Value MakeString(std::string s) { return StringPtr(std::make_shared<const std::string>(std::move(s))); }
 
+namespace {
+
+int CalcElementsDepth(const std::vector<Value>& elements) {
+  int deepest = 0;
+  for (const Value& e : elements) deepest = std::max(deepest, CalcContainerDepth(e));
+  return deepest + 1;
+}
+
+}  // namespace
+
+int CalcContainerDepth(const Value& v) {
+  if (const auto* t = std::get_if<std::shared_ptr<TupleData>>(&v.data)) return (*t)->depth;
+  if (const auto* l = std::get_if<std::shared_ptr<ListData>>(&v.data)) return (*l)->depth;
+  if (const auto* d = std::get_if<std::shared_ptr<DictData>>(&v.data)) return (*d)->depth;
+  return 0;
+}
+
 Value MakeTuple(std::vector<Value> elements) {
   auto tuple = std::make_shared<TupleData>();
+  tuple->depth = CalcElementsDepth(elements);
   tuple->elements = std::move(elements);
   return tuple;
 }
 
 Value MakeList(std::vector<Value> elements) {
   auto list = std::make_shared<ListData>();
+  list->depth = CalcElementsDepth(elements);
   list->elements = std::move(elements);
   return list;
 }

@@ -43,15 +43,21 @@ struct ObjectRef {
 
 /// A tuple. A 2-tuple of numbers used where a number is expected is a uniform range; the
 /// draw is cached in the tuple so that a name bound to it keeps one value per scene.
+/// Containers are immutable once built and record how deeply containers nest inside them
+/// (`depth`, 1 for a container of plain values), so the interpreter can refuse values nested
+/// too deeply for the recursive walks over them (printing, conversion, destruction).
 struct TupleData {
   std::vector<Value> elements;
   mutable std::optional<double> drawn;
+  int depth = 1;
 };
 struct ListData {
   std::vector<Value> elements;
+  int depth = 1;
 };
 struct DictData {
   std::vector<std::pair<Value, Value>> entries;  // insertion order, as Python
+  int depth = 1;
 };
 
 /// Built-in functions and modules, identified by a small enum for fast dispatch.
@@ -108,6 +114,8 @@ struct Distribution {
 
 Value MakeString(std::string s);
 Value MakeTuple(std::vector<Value> elements);
+/// How deeply containers nest in `v`: 0 for a plain value, else the container's `depth`.
+int CalcContainerDepth(const Value& v);
 Value MakeList(std::vector<Value> elements);
 
 /// The user-facing name of a value's type, for messages ("number", "vector", "object", …).

@@ -187,11 +187,27 @@ TEST_F(PrsTest, CheckPrintsTheOutline) {
   const Result r = Run({"check", Example("table_cube.prs")});
   EXPECT_EQ(r.exit_code, 0) << r.err;
   for (const char* expected :
-       {"table_cube.prs: ok (2 modules", "7 creation sites", "tr_1", "Tray",
+       {"table_cube.prs: ok, 20 scenes sampled (2 modules", "7 creation sites", "tr_1", "Tray",
         "completely on, ahead of, left of", "region (plane ∩ half-spaces",
         "observed over 20 scenes", "Camera", "position", "classes", "model.prs:"}) {
     EXPECT_NE(r.out.find(expected), std::string::npos) << expected << "\n" << r.out;
   }
+}
+
+// A program that compiles but cannot be sampled is never called "ok", and -n 0 says that
+// nothing was sampled.
+TEST_F(PrsTest, CheckNeverSaysOkAboveAnError) {
+  const std::string file = Write("nested.prs", "x = ()\nfor i in range(5000):\n    x = (x,)\n");
+  const Result failed = Run({"check", file});
+  EXPECT_EQ(failed.exit_code, 1);
+  EXPECT_EQ(failed.out.find(": ok"), std::string::npos) << failed.out;
+  EXPECT_NE(failed.out.find("nested.prs: compiles, but sampling fails"), std::string::npos) << failed.out;
+  EXPECT_NE(failed.err.find("nested.prs:3:9: error: tuples, lists or dicts nested more than"),
+            std::string::npos) << failed.err;
+  const Result static_only = Run({"check", file, "-n", "0"});
+  EXPECT_EQ(static_only.exit_code, 0) << static_only.err;
+  EXPECT_NE(static_only.out.find("nested.prs: compiles (not sampled: -n 0)"), std::string::npos)
+      << static_only.out;
 }
 
 TEST_F(PrsTest, StatsJsonHasCountsThatAddUp) {

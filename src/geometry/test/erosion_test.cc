@@ -148,5 +148,45 @@ TEST(ErosionTest, DegenerateErosions) {
   EXPECT_FALSE(ball.Contains({0.3, 0, 0}));  // corner (0.8, .5, .5) is outside the ball
 }
 
+// ErodeByRound: exact for polytopes (a disk or ball inside the region at every accepted
+// centre, and poking out at every refused one), and a superset of the box erosion for every
+// turn about the disk's axis, which is what sampling with an open yaw relies on.
+TEST(ErosionTest, RoundErosionIsExactForPolytopesAndHoldsEveryTurn) {
+  Rng rng(42);
+  const ConvexRegion top = ConvexRegion::MakeRect3D({0.1, -0.2, 0.8}, CalcRotationZ(0.4), 0.6, 0.4);
+  const ConvexRegion solid = ConvexRegion::MakeCuboid({0, 0, 0}, RandomRotation(rng), 0.5, 0.4, 0.3);
+  const double r = 0.07;
+  const ConvexRegion disk_centres = ErodeByRound(top, Eigen::Vector3d::UnitZ(), r);
+  const ConvexRegion ball_centres = ErodeByRound(solid, Eigen::Vector3d::Zero(), r);
+  EXPECT_NEAR(disk_centres.CalcMeasure(), (0.6 - 2 * r) * (0.4 - 2 * r), 1e-9);
+  int checked = 0;
+  for (int i = 0; i < 2000; ++i) {
+    const Eigen::Vector3d c = RandomVector(rng, -0.4, 0.4);
+    // Ball: its farthest point past each face of the solid, outside a 1 mm boundary band.
+    bool ball_inside = true, ball_outside = false;
+    for (const HalfSpace& h : solid.half_spaces()) {
+      const double past = h.normal.dot(c + h.normal * r) - h.offset;
+      ball_inside = ball_inside && past < -1e-3;
+      ball_outside = ball_outside || past > 1e-3;
+    }
+    if (ball_inside) EXPECT_TRUE(ball_centres.Contains(c));
+    if (ball_outside) EXPECT_FALSE(ball_centres.Contains(c));
+    // Disk on the tabletop: the centre moved into the plane; a box of any yaw whose largest
+    // horizontal inscribed disk has radius r fits only where the disk does.
+    const Eigen::Vector3d p(c.x() + 0.1, c.y() - 0.2, 0.8);
+    const double yaw = rng.Uniform(0, 2 * std::numbers::pi);
+    const Eigen::Vector3d half(r, r + 0.03, 0.05);  // inscribed horizontal disk: radius r
+    if (ErodeByBox(top, CalcRotationZ(yaw), half).Contains(p)) {
+      EXPECT_TRUE(disk_centres.Contains(p)) << yaw;
+      ++checked;
+    }
+  }
+  EXPECT_GT(checked, 100);
+  EXPECT_THROW(ErodeByRound(top, Eigen::Vector3d::UnitZ(), -1), std::invalid_argument);
+  // Balls in the region are kept as they are: a superset that holds every valid centre.
+  const ConvexRegion sphere = ConvexRegion::MakeSphere({0, 0, 0}, 1);
+  EXPECT_TRUE(ErodeByRound(sphere, Eigen::Vector3d::Zero(), 0.5).Contains({0.9, 0, 0}));
+}
+
 }  // namespace
 }  // namespace prs::geometry
