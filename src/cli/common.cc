@@ -1,9 +1,15 @@
 // Shared pieces of the `prs` commands: options, compiling the scenario, reporting errors.
 #include "cli/common.h"
 
+#include <fmt/format.h>
+
 #include <unistd.h>
 
+#include <cerrno>
 #include <charconv>
+#include <cstring>
+#include <filesystem>
+#include <fstream>
 #include <cstdlib>
 #include <iostream>
 #include <limits>
@@ -67,6 +73,16 @@ CLI::Validator IntegerInRange(int64_t min, int64_t max) {
 
 CLI::Validator IntegerAtLeast(int64_t min) {
   return IntegerInRange(min, std::numeric_limits<int64_t>::max());
+}
+
+CLI::Validator NonEmptyPath() {
+  return CLI::Validator(
+      [](std::string& text) -> std::string {
+        return text.empty() ? "expects a path, got an empty one (for stdout, leave the option out "
+                              "or give -)"
+                            : "";
+      },
+      "");
 }
 
 // Digits only, so that "-1" is not wrapped around to 2^64 - 1, and within 64 bits.
@@ -187,5 +203,27 @@ void PrintNote(std::string_view message) { std::cerr << "prs: " << message << '\
 bool IsStderrTerminal() { return ::isatty(STDERR_FILENO) == 1; }
 
 bool IsStdoutTerminal() { return ::isatty(STDOUT_FILENO) == 1; }
+
+bool IsScenesFile(const std::string& path) {
+  const std::string extension = std::filesystem::path(path).extension().string();
+  return extension == ".jsonl" || extension == ".json" || extension == ".ndjson";
+}
+
+std::optional<std::vector<std::string>> ReadLines(const std::string& path) {
+  std::ifstream in(path, std::ios::binary);
+  if (!in) {
+    PrintError(fmt::format("cannot read {}: {}", path, std::strerror(errno)));
+    return std::nullopt;
+  }
+  std::vector<std::string> lines;
+  for (std::string line; std::getline(in, line);) lines.push_back(line);
+  return lines;
+}
+
+int64_t CountNonBlank(const std::vector<std::string>& lines) {
+  int64_t n = 0;
+  for (const std::string& line : lines) n += line.find_first_not_of(" \t\r") != std::string::npos;
+  return n;
+}
 
 }  // namespace prs::cli

@@ -6,6 +6,7 @@
 #include <atomic>
 #include <cstdint>
 #include <memory>
+#include <optional>
 #include <string>
 #include <string_view>
 #include <vector>
@@ -61,6 +62,9 @@ CLI::Validator IntegerAtLeast(int64_t min);
 /// instead of wrapping around in an unsigned option).
 CLI::Validator UnsignedIntegerText();
 
+/// Refuses an empty path (`-o ''`), which would otherwise mean stdout or nothing, silently.
+CLI::Validator NonEmptyPath();
+
 /// All hardware threads (at least 1).
 int CountHardwareThreads();
 
@@ -88,5 +92,12 @@ void PrintNote(std::string_view message);
 /// True when stderr is a terminal (then diagnostics are coloured unless NO_COLOR is set).
 bool IsStderrTerminal();
 bool IsStdoutTerminal();
+
+/// True for a scenes file (`prs sample` output: .jsonl, .json or .ndjson) rather than a program.
+bool IsScenesFile(const std::string& path);
+/// The file's lines; prints an error and returns nullopt if it cannot be read.
+std::optional<std::vector<std::string>> ReadLines(const std::string& path);
+/// The lines that are not blank.
+int64_t CountNonBlank(const std::vector<std::string>& lines);
 
 }  // namespace prs::cli

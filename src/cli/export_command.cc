@@ -30,11 +30,6 @@ struct ExportArgs {
   bool quiet = false;
 };
 
-bool IsScenesFile(const std::string& path) {
-  const std::string extension = fs::path(path).extension().string();
-  return extension == ".jsonl" || extension == ".json";
-}
-
 // Warnings from worker threads, each printed once at the end.
 class WarningSet {
  public:
@@ -131,6 +126,11 @@ int RunExport(const ExportArgs& args) {
   }
   const auto lines = ReadLines(args.scenario.file);
   if (!lines) return kExitScenarioError;
+  if (CountNonBlank(*lines) == 0) {
+    PrintError(fmt::format("{} has no scenes: it is empty (write one with prs sample -o FILE)",
+                           args.scenario.file));
+    return kExitScenarioError;
+  }
   const auto target = PlanExportTarget(args.output, *format, CountNonBlank(*lines),
                                        fs::path(args.scenario.file).stem().string());
   if (!target) return kExitUsage;
@@ -155,7 +155,8 @@ CommandRunner ConfigureExportCommand(CLI::App& command) {
       .add_option("-o,--output", args->output,
                   "OUT.ext for one scene, or a directory for one file per scene (default: stdout "
                   "for one scene)")
-      ->type_name("OUT");
+      ->type_name("OUT")
+      ->check(NonEmptyPath());
   AddSamplingOptions(command, args->sampling);
   command.add_flag("-q,--quiet", args->quiet, "no summary on stderr");
   return [args] { return RunExport(*args); };

@@ -67,6 +67,10 @@ ExportTarget ExportTarget::File(fs::path path) {
   return ExportTarget(Kind::kFile, std::move(path), {}, {});
 }
 ExportTarget ExportTarget::Directory(fs::path dir, std::string stem, std::string extension) {
+  // "worlds/" and "worlds" name one directory; keep messages free of "worlds//".
+  while (!dir.has_filename() && dir.has_parent_path() && dir != dir.root_path()) {
+    dir = dir.parent_path();
+  }
   return ExportTarget(Kind::kDirectory, std::move(dir), std::move(stem), std::move(extension));
 }
 
@@ -131,23 +135,6 @@ std::optional<ExportTarget> PlanExportTarget(const std::string& output, exportin
   PrintError(problem);
   std::cerr << "run 'prs export --help' for usage\n";
   return std::nullopt;
-}
-
-std::optional<std::vector<std::string>> ReadLines(const std::string& path) {
-  std::ifstream in(path, std::ios::binary);
-  if (!in) {
-    PrintError(fmt::format("cannot read {}: {}", path, std::strerror(errno)));
-    return std::nullopt;
-  }
-  std::vector<std::string> lines;
-  for (std::string line; std::getline(in, line);) lines.push_back(line);
-  return lines;
-}
-
-int64_t CountNonBlank(const std::vector<std::string>& lines) {
-  int64_t n = 0;
-  for (const std::string& line : lines) n += line.find_first_not_of(" \t\r") != std::string::npos;
-  return n;
 }
 
 }  // namespace prs::cli

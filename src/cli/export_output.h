@@ -57,9 +57,4 @@ class ExportTarget {
 std::optional<ExportTarget> PlanExportTarget(const std::string& output, exporting::Format format,
                                              int64_t count, const std::string& stem);
 
-/// The file's lines; prints an error and returns nullopt if it cannot be read.
-std::optional<std::vector<std::string>> ReadLines(const std::string& path);
-/// The lines that are not blank.
-int64_t CountNonBlank(const std::vector<std::string>& lines);
-
 }  // namespace prs::cli

@@ -27,11 +27,6 @@ struct RenderArgs {
   bool quiet = false;
 };
 
-bool IsScenesFile(const std::string& path) {
-  const std::string ext = std::filesystem::path(path).extension().string();
-  return ext == ".jsonl" || ext == ".json" || ext == ".ndjson";
-}
-
 // Scenes start..start+count-1 of the scenario; throws lang::ScenarioError from sampling.
 std::vector<render::RenderScene> SampleScenes(const lang::CompiledProgram& program,
                                               const RenderArgs& args) {
@@ -195,6 +190,7 @@ CommandRunner ConfigureRenderCommand(CLI::App& command) {
       .add_option("-o,--output", args->output,
                   "PNG to write (several scenes without --grid: OUT_INDEX.png)")
       ->type_name("OUT")
+      ->check(NonEmptyPath())
       ->capture_default_str();
   command.add_option("--size", args->size, "picture size (per scene with --grid)")
       ->type_name("WxH")
@@ -208,7 +204,8 @@ CommandRunner ConfigureRenderCommand(CLI::App& command) {
   command
       .add_option("--depth", args->depth_output,
                   "also write the camera's depth as a 16-bit PNG in millimetres")
-      ->type_name("OUT");
+      ->type_name("OUT")
+      ->check(NonEmptyPath());
   AddSamplingOptions(command, args->sampling);
   command.add_flag("-q,--quiet", args->quiet, "no summary on stderr");
   return [args] { return RunRender(*args); };

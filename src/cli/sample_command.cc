@@ -192,7 +192,8 @@ CommandRunner ConfigureSampleCommand(CLI::App& command) {
   command
       .add_option("-o,--output", args->output,
                   "write to OUT (via OUT.partial, renamed when complete) instead of stdout")
-      ->type_name("OUT");
+      ->type_name("OUT")
+      ->check(NonEmptyPath());
   AddSamplingOptions(command, args->sampling);
   command.add_flag("-q,--quiet", args->quiet, "no summary on stderr");
   return [args] { return RunSample(*args); };

@@ -233,7 +233,8 @@ CommandRunner ConfigureTestCommand(CLI::App& command) {
       ->excludes(controller);
   AddSceneRangeOptions(command, args->range, 0);
   command.add_option("-o,--output", args->output, "write one JSON record per episode to OUT")
-      ->type_name("OUT");
+      ->type_name("OUT")
+      ->check(NonEmptyPath());
   command.add_option("--timeout", args->timeout_s, "seconds an --exec episode may take")
       ->type_name("S")
       ->check(PositiveSeconds())
@@ -241,7 +242,8 @@ CommandRunner ConfigureTestCommand(CLI::App& command) {
   command
       .add_option("--save-failures", args->save_failures_dir,
                   "write each failing scene to DIR/seed-S-index-I.json")
-      ->type_name("DIR");
+      ->type_name("DIR")
+      ->check(NonEmptyPath());
   AddSamplingOptions(command, args->sampling);
   command.add_flag("-q,--quiet", args->quiet, "no summary on stderr");
   return [args] { return RunTest(*args); };

@@ -1,16 +1,18 @@
-// `prs view`: a local web viewer of a scenario's scenes, served on 127.0.0.1 until Ctrl-C
-// (the URL on stdout), or with --html one self-contained page with N scenes embedded.
+// `prs view`: a local web viewer of a scenario's scenes (or of a scenes .jsonl file), served on
+// 127.0.0.1 until Ctrl-C (the URL on stdout), or with --html one self-contained page.
 #include <fmt/format.h>
 
 #include <atomic>
 #include <chrono>
 #include <iostream>
 #include <limits>
+#include <optional>
 #include <thread>
 
 #include "cli/commands.h"
 #include "cli/common.h"
 #include "cli/interrupt.h"
+#include "export/export.h"
 #include "output/line_writer.h"
 #include "viewer/viewer.h"
 
@@ -62,9 +64,8 @@ int WriteStandalonePage(const lang::CompiledProgram& program, const ViewArgs& ar
 
 // Serves until SIGINT or SIGTERM, then stops the server cleanly and exits 0: stopping is how
 // a viewer ends, not a failure.
-int Serve(const lang::CompiledProgram& program, const ViewArgs& args) {
+int Serve(viewer::ViewerServer& server, const ViewArgs& args) {
   InterruptWatch interrupt;  // before the URL is printed, so a prompt SIGTERM is handled
-  viewer::ViewerServer server(program, MakeSampleOptions(args.sampling), MakePageInfo(args));
   int port = 0;
   try {
     port = server.Bind(args.port);
@@ -91,7 +92,53 @@ int Serve(const lang::CompiledProgram& program, const ViewArgs& args) {
   return kExitSuccess;
 }
 
+// The page of a scenes file's scenes (each line checked as scene JSON), or nullopt after
+// printing why there is none.
+std::optional<std::string> MakeScenesFilePage(const ViewArgs& args) {
+  const auto lines = ReadLines(args.scenario.file);
+  if (!lines) return std::nullopt;
+  std::vector<std::string> records;
+  for (size_t i = 0; i < lines->size(); ++i) {
+    const std::string& line = (*lines)[i];
+    if (line.find_first_not_of(" \t\r") == std::string::npos) continue;
+    try {
+      exporting::ReadSceneJson(line);
+    } catch (const std::invalid_argument& error) {
+      PrintError(fmt::format("{}:{}: {}", args.scenario.file, i + 1, error.what()));
+      return std::nullopt;
+    }
+    records.push_back(viewer::FormatViewRecordOfLine(line));
+  }
+  if (records.empty()) {
+    PrintError(fmt::format("{} has no scenes: it is empty (write one with prs sample -o FILE)",
+                           args.scenario.file));
+    return std::nullopt;
+  }
+  return viewer::MakeStandalonePage({args.scenario.file, 0, 0}, records);
+}
+
+// A scenes file: its scenes as they are, in one page written with --html or served.
+int ViewScenesFile(const ViewArgs& args) {
+  const std::optional<std::string> page = MakeScenesFilePage(args);
+  if (!page) return kExitScenarioError;
+  if (!args.html.empty()) {
+    try {
+      output::LineWriter writer(args.html);
+      writer.AddLine(*page);
+      writer.Commit();
+    } catch (const std::exception& error) {
+      PrintError(error.what());
+      return kExitScenarioError;
+    }
+    PrintNote(fmt::format("wrote {} with the scenes of {}", args.html, args.scenario.file));
+    return kExitSuccess;
+  }
+  viewer::ViewerServer server(*page);
+  return Serve(server, args);
+}
+
 int RunView(const ViewArgs& args) {
+  if (IsScenesFile(args.scenario.file)) return ViewScenesFile(args);
   if (!args.html.empty() && args.start > std::numeric_limits<uint64_t>::max() -
                                              uint64_t(args.count - 1)) {
     PrintError(fmt::format("--start {} with -n {} runs past the last scene index, 2^64 - 1",
@@ -100,7 +147,9 @@ int RunView(const ViewArgs& args) {
   }
   auto program = CompileScenario(args.scenario);
   if (!program) return kExitScenarioError;
-  return args.html.empty() ? Serve(*program, args) : WriteStandalonePage(*program, args);
+  if (!args.html.empty()) return WriteStandalonePage(*program, args);
+  viewer::ViewerServer server(*program, MakeSampleOptions(args.sampling), MakePageInfo(args));
+  return Serve(server, args);
 }
 
 }  // namespace
@@ -115,7 +164,7 @@ CommandRunner ConfigureViewCommand(CLI::App& command) {
   auto* html = command.add_option("--html", args->html,
                                   "write one self-contained page with the scenes embedded to "
                                   "OUT instead of serving");
-  html->type_name("OUT");
+  html->type_name("OUT")->check(NonEmptyPath());
   command.add_option("-n,--count", args->count, "scenes in the --html page")
       ->type_name("N")
       ->check(IntegerInRange(1, 10'000))

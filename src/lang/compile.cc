@@ -2,6 +2,8 @@
 // importing file's directory, then the search path; cycles are errors), parses everything, and
 // hands the modules to the resolver, which builds the class table and creation plans.
 #include <algorithm>
+#include <cmath>
+#include <cstdlib>
 #include <filesystem>
 #include <fstream>
 #include <sstream>
@@ -16,8 +18,9 @@ namespace {
 class DiskFileSystem final : public FileSystem {
  public:
   std::optional<std::string> ReadFile(const std::string& path) const override {
+    // Any file but a directory: devices and pipes (`/dev/stdin`, `<(generate)`) read too.
     std::error_code error;
-    if (!std::filesystem::is_regular_file(path, error)) return std::nullopt;
+    if (std::filesystem::is_directory(path, error)) return std::nullopt;
     std::ifstream in(path, std::ios::binary);
     if (!in) return std::nullopt;
     std::ostringstream text;
@@ -36,6 +39,8 @@ class ModuleLoader {
 
   // Parses `text` as module `name` and every module it imports; returns its index.
   int LoadModule(const std::string& name, const std::string& path, std::string text) {
+    // A UTF-8 byte-order mark (editors on Windows write one) is not part of the program.
+    if (text.starts_with("\xEF\xBB\xBF")) text.erase(0, 3);
     const FileId file = program_.sources.AddFile(path, std::move(text));
     // Modules are known by their file's stem, so a module importing the main file by name
     // is a cycle too.
@@ -172,6 +177,18 @@ void CheckParamOverrides(const CompiledProgram& program, const CompileOptions& o
   std::vector<std::string> declared;
   for (const auto& module : program.modules) CollectParamNames(module->ast.body, declared);
   for (const auto& [name, value] : options.param_overrides) {
+    char* end = nullptr;
+    const double number = std::strtod(value.c_str(), &end);
+    if (!value.empty() && *end == '\0' && !std::isfinite(number)) {
+      Diagnostic d;
+      d.id = "bad-value";
+      d.has_span = false;
+      d.message = "-p " + name + "=" + value +
+                  ": a param must be a finite number or a string (scene JSON cannot hold "
+                  "infinity or NaN)";
+      diagnostics.Report(std::move(d));
+      continue;
+    }
     if (std::find(declared.begin(), declared.end(), name) != declared.end()) continue;
     Diagnostic d;
     d.id = "unknown-param";
@@ -181,6 +198,15 @@ void CheckParamOverrides(const CompiledProgram& program, const CompileOptions& o
     if (!suggestion.empty()) d.message += "; did you mean '" + suggestion + "'?";
     diagnostics.Report(std::move(d));
   }
+}
+
+// Why the real file system could not read `path`, for the message.
+std::string DescribeUnreadable(const std::string& path, const FileSystem* injected) {
+  std::error_code error;
+  if (injected) return "no such file, or it is not readable";
+  if (!std::filesystem::exists(path, error)) return "no such file";
+  if (std::filesystem::is_directory(path, error)) return "it is a directory; give a .prs file";
+  return "permission denied, or it is not readable";
 }
 
 }  // namespace
@@ -210,7 +236,7 @@ std::unique_ptr<CompiledProgram> CompileFile(const std::string& path, const Comp
     Diagnostic d;
     d.id = "file-not-found";
     d.has_span = false;
-    d.message = "cannot read '" + path + "': no such file, or it is not readable";
+    d.message = "cannot read '" + path + "': " + DescribeUnreadable(path, options.file_system);
     diagnostics.Report(std::move(d));
     return std::make_unique<CompiledProgram>();
   }

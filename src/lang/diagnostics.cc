@@ -232,6 +232,8 @@ const std::vector<DiagnosticKind>& DiagnosticCatalogue() {
       {"invalid-character", "lexer", "a character that cannot start any token"},
       {"invalid-number", "lexer", "a malformed number literal such as `1e` or `1.2.3`"},
       {"unterminated-string", "lexer", "a string literal with no closing quote"},
+      {"bad-escape", "lexer", "a `\\x` or `\\u` escape without its 2 or 4 hexadecimal digits"},
+      {"unknown-escape", "lexer", "(warning) an escape such as `\\d` that Python keeps as written"},
       {"unclosed-bracket", "lexer", "an opening bracket never closed before the end of file"},
       {"mismatched-bracket", "lexer", "a closing bracket that does not match the open one"},
       {"unmatched-bracket", "lexer", "a closing bracket with no opening bracket"},

@@ -4,6 +4,7 @@
 
 #include <fmt/format.h>
 
+#include <cctype>
 #include <charconv>
 #include <cmath>
 #include <cstdlib>
@@ -88,6 +89,7 @@ class Lexer {
   void LexNumber();
   void LexString(size_t prefix_begin, bool raw);
   bool ReadEscape(std::string* out);
+  bool ReadHexEscape(int digits, size_t backslash, std::string* out);
   void LexOperator();
   void OpenBracketAt(char c);
   void CloseBracketAt(char c);
@@ -297,8 +299,11 @@ void Lexer::LexNumber() {
 }
 
 // Reads the escape after a backslash (pos_ is on the character after '\'). Returns false for
-// an escaped newline, which produces nothing.
+// an escaped newline, which produces nothing. \xHH is one byte, \uXXXX a code point in UTF-8;
+// a malformed one is an error. Unknown escapes keep their backslash, as in Python, with a
+// warning, since `"\d"` is more often a mistake than a backslash.
 bool Lexer::ReadEscape(std::string* out) {
+  const size_t backslash = pos_ - 1;
   char c = Peek();
   ++pos_;
   switch (c) {
@@ -307,15 +312,53 @@ bool Lexer::ReadEscape(std::string* out) {
     case 'r': out->push_back('\r'); return true;
     case '0': out->push_back('\0'); return true;
     case '\\': case '\'': case '"': out->push_back(c); return true;
+    case 'x': case 'u': return ReadHexEscape(c == 'x' ? 2 : 4, backslash, out);
     case '\r':
       if (Peek() == '\n') ++pos_;
       return false;
     case '\n': return false;
-    default:  // unknown escapes keep their backslash, as in Python
+    default: {
+      Diagnostic d;
+      d.severity = Severity::kWarning;
+      d.id = "unknown-escape";
+      d.span = Span(backslash, pos_);
+      d.message = fmt::format("unknown escape sequence '\\{}' is kept as written", c);
+      d.fix_it = fmt::format("\\\\{}", c);
+      diags_.Report(std::move(d));
       out->push_back('\\');
       out->push_back(c);
       return true;
+    }
   }
+}
+
+// \xHH (digits == 2) or \uXXXX (digits == 4), pos_ just past the 'x' or 'u'.
+bool Lexer::ReadHexEscape(int digits, size_t backslash, std::string* out) {
+  uint32_t code = 0;
+  for (int i = 0; i < digits; ++i) {
+    const char h = Peek();
+    const int value = std::isxdigit(static_cast<unsigned char>(h))
+                          ? (std::isdigit(static_cast<unsigned char>(h)) ? h - '0' : (h | 0x20) - 'a' + 10)
+                          : -1;
+    if (value < 0) {
+      diags_.Error("bad-escape", Span(backslash, pos_),
+                   fmt::format("'\\{}' needs {} hexadecimal digits", digits == 2 ? 'x' : 'u', digits));
+      return true;
+    }
+    code = code * 16 + value;
+    ++pos_;
+  }
+  if (digits == 2 || code < 0x80) {
+    out->push_back(static_cast<char>(code));
+  } else if (code < 0x800) {
+    out->push_back(static_cast<char>(0xC0 | (code >> 6)));
+    out->push_back(static_cast<char>(0x80 | (code & 0x3F)));
+  } else {
+    out->push_back(static_cast<char>(0xE0 | (code >> 12)));
+    out->push_back(static_cast<char>(0x80 | ((code >> 6) & 0x3F)));
+    out->push_back(static_cast<char>(0x80 | (code & 0x3F)));
+  }
+  return true;
 }
 
 void Lexer::LexString(size_t prefix_begin, bool raw) {

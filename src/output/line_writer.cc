@@ -45,7 +45,12 @@ LineWriter::~LineWriter() {
   } catch (const std::exception&) {
     // Destructors must not throw; a caller that cares calls Flush() or Commit() itself.
   }
-  if (is_file() && fd_ >= 0) ::close(fd_);
+  if (is_file() && fd_ >= 0) {
+    ::close(fd_);
+    // Nothing was written (the first scene failed): an empty PATH.partial would only say
+    // "partial results" where there are none.
+    if (!direct_ && lines_written_ == 0) std::remove(partial_path().c_str());
+  }
 }
 
 void LineWriter::AddLine(std::string_view line) {

@@ -20,7 +20,8 @@ class LineWriter {
   /// it directly instead. Throws std::runtime_error naming the file and the reason if it
   /// cannot be created.
   explicit LineWriter(std::string path);
-  /// Writes what is buffered (ignoring errors) and closes the file, without renaming it.
+  /// Writes what is buffered (ignoring errors) and closes the file, without renaming it; a
+  /// PATH.partial that received no line is removed.
   ~LineWriter();
   LineWriter(const LineWriter&) = delete;
   LineWriter& operator=(const LineWriter&) = delete;

@@ -86,6 +86,11 @@ std::string FormatViewRecord(const sampling::SampledScene& sampled) {
   return record.dump();
 }
 
+std::string FormatViewRecordOfLine(std::string_view line) {
+  const json record = {{"line", line}, {"workspace", nullptr}};
+  return record.dump(-1, ' ', false, json::error_handler_t::replace);
+}
+
 std::string FormatErrorRecord(std::string_view id, std::string_view message) {
   const json record = {{"error", {{"id", id}, {"message", message}}}};
   return record.dump(-1, ' ', false, json::error_handler_t::replace);

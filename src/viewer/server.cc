@@ -43,22 +43,32 @@ std::optional<uint64_t> ParseIndexParam(const httplib::Request& request, const c
 struct ViewerServer::Impl {
   Impl(const lang::CompiledProgram& program, const sampling::SampleOptions& options,
        PageInfo page)
-      : program(program), sampler(program, options), page(std::move(page)) {}
-
+      : program(&program), page(std::move(page)) {
+    sampler.emplace(program, options);
+  }
+  explicit Impl(std::string standalone_page) : fixed_page(std::move(standalone_page)) {}
   void AddRoutes();
   // Samples the scene the request names and answers with `format`'s text, or an error record.
   void AnswerScene(const httplib::Request& request, httplib::Response& response,
                    std::string (*format)(const sampling::SampledScene&));
 
-  const lang::CompiledProgram& program;
+  const lang::CompiledProgram* program = nullptr;  // null: a fixed page, nothing to sample
   std::mutex sampler_mutex;
-  sampling::SceneSampler sampler;
+  std::optional<sampling::SceneSampler> sampler;
   PageInfo page;
+  std::string fixed_page;
   httplib::Server http;
 };
 
 void ViewerServer::Impl::AnswerScene(const httplib::Request& request, httplib::Response& response,
                                      std::string (*format)(const sampling::SampledScene&)) {
+  if (!sampler) {
+    response.status = kBadRequest;
+    response.set_content(FormatErrorRecord("not-sampling", "this viewer shows the scenes of a "
+                                                           "scenes file and samples nothing"),
+                         kJson);
+    return;
+  }
   std::string error;
   const auto seed = ParseIndexParam(request, "seed", error);
   const auto index = seed ? ParseIndexParam(request, "index", error) : std::nullopt;
@@ -69,17 +79,18 @@ void ViewerServer::Impl::AnswerScene(const httplib::Request& request, httplib::R
   }
   try {
     const std::lock_guard lock(sampler_mutex);
-    response.set_content(format(sampler.Sample(*seed, *index)), kJson);
+    response.set_content(format(sampler->Sample(*seed, *index)), kJson);
   } catch (const lang::ScenarioError& failure) {
     response.status = kUnprocessable;
-    const std::string message = lang::RenderDiagnostic(failure.diagnostic(), program.sources, false);
+    const std::string message = lang::RenderDiagnostic(failure.diagnostic(), program->sources, false);
     response.set_content(FormatErrorRecord(failure.diagnostic().id, message), kJson);
   }
 }
 
 void ViewerServer::Impl::AddRoutes() {
   http.Get("/", [this](const httplib::Request&, httplib::Response& response) {
-    response.set_content(MakeServedPage(page), "text/html; charset=utf-8");
+    response.set_content(fixed_page.empty() ? MakeServedPage(page) : fixed_page,
+                         "text/html; charset=utf-8");
   });
   http.Get("/viewer.js", [](const httplib::Request&, httplib::Response& response) {
     const std::string_view script = ViewerScript();
@@ -101,6 +112,15 @@ void ViewerServer::Impl::AddRoutes() {
 ViewerServer::ViewerServer(const lang::CompiledProgram& program,
                            const sampling::SampleOptions& options, PageInfo page)
     : impl_(std::make_unique<Impl>(program, options, std::move(page))) {
+  Configure();
+}
+
+ViewerServer::ViewerServer(std::string standalone_page)
+    : impl_(std::make_unique<Impl>(std::move(standalone_page))) {
+  Configure();
+}
+
+void ViewerServer::Configure() {
   impl_->AddRoutes();
   // httplib's default also sets SO_REUSEPORT, which lets a second server share a port that is
   // in use; SO_REUSEADDR alone still allows a quick restart on the same --port.

@@ -20,6 +20,10 @@ namespace prs::viewer {
 /// planar workspace's come in cyclic order.
 std::string FormatViewRecord(const sampling::SampledScene& sampled);
 
+/// The record of a scene line read back from a scenes file (`prs sample` output): the line as
+/// it is, and no workspace (the line does not carry it).
+std::string FormatViewRecordOfLine(std::string_view line);
+
 /// {"error": {"id": ID, "message": MESSAGE}}: what the server answers instead of a record.
 std::string FormatErrorRecord(std::string_view id, std::string_view message);
 
@@ -43,9 +47,12 @@ std::string MakeStandalonePage(const PageInfo& info, const std::vector<std::stri
 /// in the source as on the command line); a bad query with HTTP 400.
 class ViewerServer {
  public:
-  /// `program` must outlive the server.
+  /// Samples scenes of `program` on request; `program` must outlive the server.
   ViewerServer(const lang::CompiledProgram& program, const sampling::SampleOptions& options,
                PageInfo page);
+  /// Serves one fixed page (MakeStandalonePage: scenes read from a file, nothing to sample);
+  /// "/view" and "/scene" answer a "not-sampling" error.
+  explicit ViewerServer(std::string standalone_page);
   ~ViewerServer();
   ViewerServer(const ViewerServer&) = delete;
   ViewerServer& operator=(const ViewerServer&) = delete;
@@ -59,6 +66,7 @@ class ViewerServer {
   void Stop();
 
  private:
+  void Configure();
   struct Impl;
   std::unique_ptr<Impl> impl_;
 };

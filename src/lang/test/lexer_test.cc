@@ -84,6 +84,14 @@ TEST(LexerTest, BackslashContinuation) {
   EXPECT_EQ(Kinds(r->tokens), "x = 1 + 2 ; y ; EOF");
 }
 
+// The position (line:column) and id of the first diagnostic.
+std::string FirstError(const LexResult& r) {
+  if (r.diags.diagnostics().empty()) return "none";
+  const Diagnostic& d = r.diags.diagnostics()[0];
+  LineColumn lc = r.sources.CalcLineColumn(d.span.file, d.span.begin);
+  return d.id + "@" + std::to_string(lc.line) + ":" + std::to_string(lc.column);
+}
+
 TEST(LexerTest, StringsAndEscapes) {
   auto r = LexText(R"(a = 'x\ty' "q\"z\\" 'it\'s' "\n" '\d')" "\n");
   ASSERT_FALSE(r->diags.has_errors());
@@ -93,6 +101,18 @@ TEST(LexerTest, StringsAndEscapes) {
   EXPECT_EQ(r->tokens[4].text, "it's");
   EXPECT_EQ(r->tokens[5].text, "\n");
   EXPECT_EQ(r->tokens[6].text, "\\d");  // unknown escapes keep the backslash
+  EXPECT_EQ(FirstError(*r), "unknown-escape@1:35");  // with a warning at the escape
+  EXPECT_EQ(r->diags.diagnostics()[0].severity, Severity::kWarning);
+}
+
+TEST(LexerTest, HexAndUnicodeEscapes) {
+  auto r = LexText(R"(a = '\x41\u00e9\u20ac')" "\n");
+  ASSERT_FALSE(r->diags.has_errors());
+  EXPECT_TRUE(r->diags.diagnostics().empty());
+  EXPECT_EQ(r->tokens[2].text, "A\xC3\xA9\xE2\x82\xAC");
+  auto bad = LexText(R"(a = 'x\x4g')" "\n");
+  EXPECT_EQ(FirstError(*bad), "bad-escape@1:7");
+  EXPECT_TRUE(bad->diags.has_errors());
 }
 
 TEST(LexerTest, TripleQuotedStringsSpanLines) {
@@ -135,14 +155,6 @@ TEST(LexerTest, TokenSpansAreByteOffsets) {
   EXPECT_EQ(r->tokens[0].span.end, 2u);
   EXPECT_EQ(r->tokens[2].span.begin, 5u);
   EXPECT_EQ(r->tokens[2].span.end, 9u);
-}
-
-// The position (line:column) and id of the first diagnostic.
-std::string FirstError(const LexResult& r) {
-  if (r.diags.diagnostics().empty()) return "none";
-  const Diagnostic& d = r.diags.diagnostics()[0];
-  LineColumn lc = r.sources.CalcLineColumn(d.span.file, d.span.begin);
-  return d.id + "@" + std::to_string(lc.line) + ":" + std::to_string(lc.column);
 }
 
 TEST(LexerTest, UnterminatedStringIsReportedAtItsStart) {
