@@ -16,8 +16,8 @@ namespace prs::sim::testing_scenes {
 inline const lang::CompiledProgram* CompileExample(const std::string& name) {
   const char* dir = std::getenv("PRS_SOURCE_DIR");
   lang::DiagnosticEngine diagnostics;
-  auto compiled = lang::CompileFile(std::string(dir ? dir : PRS_DEFAULT_SOURCE_DIR) + "/examples/" + name,
-                                    {}, diagnostics);
+  const std::string path = std::string(dir ? dir : PRS_DEFAULT_SOURCE_DIR) + "/examples/" + name;
+  auto compiled = lang::CompileFile(path, {}, diagnostics);
   EXPECT_FALSE(diagnostics.has_errors()) << name;
   return compiled.release();
 }

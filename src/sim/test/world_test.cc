@@ -71,7 +71,8 @@ TEST(WorldTest, ArmsStandOnTheTableInsideRobotBoxesOfAnyHeight) {
   for (int i = 0; i < 3; ++i) {
     const double height = kRobotHeights_m[i], yaw = kRobotYaws_rad[i + 1];
     SCOPED_TRACE(::testing::Message() << "height " << height << " m, yaw " << yaw << " rad");
-    World world = BuildWorld(exporting::MakeExportScene(WithRobotBoxes(scene, height, yaw), "test"));
+    const lang::Scene boxed = WithRobotBoxes(scene, height, yaw);
+    World world = BuildWorld(exporting::MakeExportScene(boxed, "test"));
     ASSERT_EQ(world.arms.size(), 2u);
     std::vector<Eigen::Vector3d> p_tcp_start;
     for (const WorldArm& arm : world.arms) {
