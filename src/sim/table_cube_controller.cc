@@ -151,10 +151,9 @@ Eigen::Vector3d CalcHandoverPoint(const World& world, double cube_size_m) {
     p_mid += arm.X_WBase.translation() / world.arms.size();
     forward += arm.X_WBase.linear().col(0);
   }
-  const exporting::Body* robot = FindNearest(world.scene, "Robot", p_mid);
-  const double table_top = robot->p_WO.z() - robot->size.z() / 2;
+  // The arms' bases stand on the table (CalcArmMount), so p_mid is on its top.
   Eigen::Vector3d p = p_mid + 0.35 * Eigen::Vector3d(forward.x(), forward.y(), 0).normalized();
-  p.z() = table_top + cube_size_m / 2 + 0.005;
+  p.z() += cube_size_m / 2 + 0.005;
   return p;
 }
 

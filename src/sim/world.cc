@@ -45,6 +45,17 @@ void InsertBefore(std::string& xml, const std::string& marker, const std::string
   xml.insert(at, text);
 }
 
+// In the simulated world the arm is the robot, so each Robot object keeps its body (a frame,
+// named as exported) but loses its box. A solid box would enclose the arm's links and push
+// them apart; a visual-only one would still hide the arm, and a 1 m tall one (the Panda's
+// real size) most of the table, from the ceiling camera. prs export keeps the boxes.
+exporting::ExportScene WithoutRobotGeometry(exporting::ExportScene scene) {
+  for (exporting::Body& b : scene.bodies) {
+    if (b.class_name == "Robot") b.shape = exporting::Shape::kNone;
+  }
+  return scene;
+}
+
 PandaNames ArmNames(const exporting::Body& robot) { return PandaNames{robot.name + "_"}; }
 
 }  // namespace
@@ -67,7 +78,9 @@ const exporting::Body* World::FindFirst(const std::string& class_name) const {
 Eigen::Isometry3d CalcArmMount(const exporting::Body& robot) {
   Eigen::Isometry3d X = Eigen::Isometry3d::Identity();
   const Eigen::Matrix3d R_WO = robot.R_WO.toRotationMatrix();
-  X.translation() = robot.p_WO + R_WO.col(2) * (robot.size.z() / 2);
+  // The bottom face: a Robot object stands `on` its support, and its box is the whole robot
+  // (a Panda is about 1 m tall), so the arm's base stands where the box does.
+  X.translation() = robot.p_WO - R_WO.col(2) * (robot.size.z() / 2);
   X.linear() = R_WO * Eigen::AngleAxisd(kPi / 2, Eigen::Vector3d::UnitZ()).toRotationMatrix();
   return X;
 }
@@ -83,7 +96,7 @@ std::string WriteWorldMjcf(const exporting::ExportScene& scene) {
     equalities += WritePandaEqualities(names);
     actuators += WritePandaActuators(names);
   }
-  std::string xml = exporting::WriteScene(scene, exporting::Format::kMjcf);
+  std::string xml = exporting::WriteScene(WithoutRobotGeometry(scene), exporting::Format::kMjcf);
   InsertBefore(xml, "</worldbody>", bodies);
   // Offscreen buffers big enough for the camera images the controller renders.
   InsertBefore(xml, "</mujoco>", "<visual><global offwidth=\"1280\" offheight=\"960\"/></visual>");

@@ -1,6 +1,6 @@
 // A simulated world from a sampled scene (issue 6): the scene's objects as exported for MuJoCo
-// (export/export.h: static fixtures, free bodies with mass, cameras), plus a Panda arm on every
-// Robot object and four walls around every Tray, so that "against a tray wall" is physical.
+// (export/export.h: static fixtures, free bodies with mass, cameras), a Panda arm in place of
+// every Robot object, and four walls around every Tray, so that "against a tray wall" is physical.
 #pragma once
 
 #include <string>
@@ -16,7 +16,7 @@ namespace prs::sim {
 inline constexpr double kTrayWallThickness_m = 0.006;
 inline constexpr double kTrayWallHeight_m = 0.03;
 
-/// One Panda and the Robot object it stands on.
+/// One Panda and the Robot object it stands in for.
 struct WorldArm {
   std::string robot_name;  // the scene object's (export) name
   PandaNames names;
@@ -39,11 +39,16 @@ struct World {
   const exporting::Body* FindFirst(const std::string& class_name) const;
 };
 
-/// X_WBase of the arm on a Robot object: on the object's top face, facing where the object
-/// faces (the arm's forward x along the object's forward y).
+/// X_WBase of the arm a Robot object stands for: at the centre of the object's bottom face
+/// (on whatever the object is on), facing where the object faces (the arm's forward x along
+/// the object's forward y, its z along the object's up). Independent of the box's height: the
+/// box is the robot's bounding volume, 0.1 m or 1.026 m tall alike.
 Eigen::Isometry3d CalcArmMount(const exporting::Body& robot);
 
 /// The world's MJCF: export's MuJoCo document with the arms, tray walls and their actuators.
+/// Robot objects are bodies without geometry there: the arm stands in the box's place, and
+/// the box (the volume the sampler keeps other objects out of) would enclose the arm's links
+/// and, drawn, hide the arm and, 1 m tall, much of the table from a ceiling camera.
 std::string WriteWorldMjcf(const exporting::ExportScene& scene);
 
 /// Compiles the world and puts each arm in its ready pose. Throws std::runtime_error when

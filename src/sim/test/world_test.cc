@@ -1,6 +1,9 @@
 // The simulated Table-Cube world: every scene object is in the model where the scene put it,
-// an arm stands on each robot, trays have walls, and the world rests under gravity.
+// an arm stands where each robot does, on its support, whatever the robot box's height and yaw,
+// trays have walls, and the world rests under gravity.
 #include <gtest/gtest.h>
+
+#include <numbers>
 
 #include "sim/control.h"
 #include "sim/test/table_cube_scenes.h"
@@ -10,6 +13,11 @@ namespace prs::sim {
 namespace {
 
 using testing_scenes::SampleTableCube;
+using testing_scenes::WithRobotBoxes;
+
+// Robot boxes as short as examples/model.prs's, and as tall as the original tool's Panda.
+constexpr double kRobotHeights_m[] = {0.1, 0.5, 1.026};
+constexpr double kRobotYaws_rad[] = {0, 0.6, -2.2, std::numbers::pi};
 
 Eigen::Vector3d BodyPosition(const World& world, const std::string& name) {
   return Eigen::Map<const Eigen::Vector3d>(world.data->xpos + 3 * world.body(name));
@@ -28,12 +36,56 @@ TEST(WorldTest, EveryObjectIsWhereTheSceneSaysAndArmsStandOnRobots) {
     for (const exporting::Body& b : world.scene.bodies) robot = b.name == arm.robot_name ? &b : robot;
     ASSERT_NE(robot, nullptr);
     const Eigen::Vector3d p_base = BodyPosition(world, arm.names.base());
-    EXPECT_NEAR(p_base.z(), robot->p_WO.z() + robot->size.z() / 2, 1e-9);  // on the top face
+    EXPECT_NEAR(p_base.z(), robot->p_WO.z() - robot->size.z() / 2, 1e-9);  // on the table
     // The arm faces where the robot faces (+y in Table-Cube): its hand is ahead of its base.
     EXPECT_GT(GetTcpPose(*world.data, arm.index).translation().y(), p_base.y() + 0.2);
   }
   for (const exporting::Body& b : world.scene.bodies) {
     if (b.class_name == "Tray") EXPECT_GE(world.body(b.name + "_walls"), 0);
+  }
+}
+
+TEST(WorldTest, TheArmMountIsTheRobotBoxsBottomFaceForAnyHeightAndYaw) {
+  for (const double height : kRobotHeights_m) {
+    for (const double yaw : kRobotYaws_rad) {
+      exporting::Body robot;
+      robot.class_name = "Robot";
+      robot.size = Eigen::Vector3d(0.14, 0.22, height);
+      robot.p_WO = Eigen::Vector3d(0.3, -0.2, 0.8 + height / 2);  // on a support at z = 0.8
+      robot.R_WO = Eigen::AngleAxisd(yaw, Eigen::Vector3d::UnitZ());
+      SCOPED_TRACE(::testing::Message() << "height " << height << " m, yaw " << yaw << " rad");
+      const Eigen::Isometry3d X_WBase = CalcArmMount(robot);
+      EXPECT_LT((X_WBase.translation() - Eigen::Vector3d(0.3, -0.2, 0.8)).norm(), 1e-12);
+      EXPECT_TRUE(X_WBase.linear().col(2).isApprox(Eigen::Vector3d::UnitZ(), 1e-12));
+      // The arm's forward x is the robot's forward y.
+      EXPECT_TRUE(X_WBase.linear().col(0).isApprox(robot.R_WO * Eigen::Vector3d::UnitY(), 1e-12));
+    }
+  }
+}
+
+// In the built world: each arm's base is on the table top, the Robot's body has no geometry
+// (the arm is in its box), and the arms hold their ready pose, with nothing pushing them.
+TEST(WorldTest, ArmsStandOnTheTableInsideRobotBoxesOfAnyHeight) {
+  const lang::Scene scene = SampleTableCube(0);
+  const double table_top = 0.8;
+  for (int i = 0; i < 3; ++i) {
+    const double height = kRobotHeights_m[i], yaw = kRobotYaws_rad[i + 1];
+    SCOPED_TRACE(::testing::Message() << "height " << height << " m, yaw " << yaw << " rad");
+    const lang::Scene boxed = WithRobotBoxes(scene, height, yaw);
+    World world = BuildWorld(exporting::MakeExportScene(boxed, "test"));
+    ASSERT_EQ(world.arms.size(), 2u);
+    std::vector<Eigen::Vector3d> p_tcp_start;
+    for (const WorldArm& arm : world.arms) {
+      EXPECT_NEAR(BodyPosition(world, arm.names.base()).z(), table_top, 1e-9);
+      EXPECT_EQ(world.model->body_geomnum[world.body(arm.robot_name)], 0);
+      p_tcp_start.push_back(GetTcpPose(*world.data, arm.index).translation());
+    }
+    SimulateFor(*world.model, *world.data, world.arm_indices(), 1.0);
+    for (size_t a = 0; a < world.arms.size(); ++a) {
+      const Eigen::Vector3d p_tcp = GetTcpPose(*world.data, world.arms[a].index).translation();
+      EXPECT_LT((p_tcp - p_tcp_start[a]).norm(), 0.002);
+      EXPECT_GT(p_tcp.z(), table_top + 0.2);  // the ready pose is above the table
+    }
   }
 }
 
