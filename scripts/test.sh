@@ -1,8 +1,9 @@
 #!/usr/bin/env bash
 # Sets up, builds and runs every test: the Release build (C++ tests, the simulated case study,
 # the headless-Chromium viewer test), the Python package (scripts/test_python.sh), the same C++
-# tests under AddressSanitizer + UndefinedBehaviorSanitizer, then a 20-second libFuzzer run over
-# the language stage (scripts/fuzz.sh). Exits non-zero if anything fails.
+# tests under AddressSanitizer + UndefinedBehaviorSanitizer, then libFuzzer over the language
+# stage: 20 s of ordinary inputs and 10 s of inputs up to 1 MiB (long chains; scripts/fuzz.sh).
+# Exits non-zero if anything fails.
 set -euo pipefail
 cd "$(dirname "$0")/.."
 scripts/setup.sh
@@ -13,3 +14,4 @@ scripts/build.sh asan
 ASAN_OPTIONS=detect_leaks=1 UBSAN_OPTIONS=print_stacktrace=1 \
   ctest --test-dir build-asan --output-on-failure -j2
 scripts/fuzz.sh 20
+scripts/fuzz.sh 10 long

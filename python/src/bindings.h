@@ -52,6 +52,11 @@ Eigen::Vector3d CalcObjectYawPitchRoll(const lang::SceneObject& object);
                                      const lang::SourceManager& sources, const std::string& text,
                                      const std::string& file = "");
 
+/// A seed or scene index from Python: an int from 0 to 2**64 - 1. Raises TypeError (not an
+/// int) or ValueError (out of range) naming the argument, instead of pybind11's generic
+/// "incompatible function arguments".
+uint64_t ToSceneNumber(const py::object& value, const char* name);
+
 /// Registers Scene, SceneObject and the batch helpers (scene.cc).
 void BindScene(py::module_& m);
 /// Adds Scene.export and Scene.render (scene_files.cc).

@@ -88,4 +88,18 @@ void RaiseScenarioError(const lang::Diagnostic& diagnostic, const lang::SourceMa
   throw py::error_already_set();
 }
 
+uint64_t ToSceneNumber(const py::object& value, const char* name) {
+  if (!py::isinstance<py::int_>(value) || py::isinstance<py::bool_>(value)) {
+    throw py::type_error(std::string(name) + " must be an int, got " +
+                         std::string(py::str(value.get_type().attr("__name__"))));
+  }
+  const unsigned long long number = PyLong_AsUnsignedLongLong(value.ptr());
+  if (PyErr_Occurred()) {  // negative, or past 64 bits
+    PyErr_Clear();
+    throw py::value_error(std::string(name) + " must be from 0 to 2**64 - 1, got " +
+                          std::string(py::str(value)));
+  }
+  return number;
+}
+
 }  // namespace prs::python

@@ -106,8 +106,15 @@ def test_bad_arguments_raise_python_errors(table_cube):
         table_cube.sample_batch(2, threads=0)
     with pytest.raises(ValueError, match="threads must be from 1 to 1024, got 5000"):
         table_cube.check(threads=5000)
-    with pytest.raises(TypeError):
+    with pytest.raises(ValueError, match=r"seed must be from 0 to 2\*\*64 - 1, got -1"):
         table_cube.sample(seed=-1)
+    with pytest.raises(ValueError, match=r"seed must be from 0 to 2\*\*64 - 1, got -1"):
+        table_cube.sample_batch(5, seed=-1)
+    with pytest.raises(ValueError, match=r"start must be from 0 to 2\*\*64 - 1, got 18446744073709551616"):
+        table_cube.sample_batch(1, start=2**64)
+    with pytest.raises(TypeError, match="index must be an int, got str"):
+        table_cube.sample(index="3")
+    assert table_cube.sample(seed=2**64 - 1).seed == 2**64 - 1
     with pytest.raises(TypeError, match="param 'size': expected a number or a string"):
         prs.load(EXAMPLES / "table_cube.prs", params={"size": True})
     with pytest.raises(ValueError, match="max_attempts must be >= 1"):

@@ -79,3 +79,23 @@ def test_run_time_error_is_located():
     with pytest.raises(prs.ScenarioError) as caught:
         scenario.sample()
     assert (caught.value.file, caught.value.line) == ("div.prs", 1)
+
+
+@pytest.mark.parametrize("text", [
+    "x = 1" + " + 1" * 100_000,
+    "x = Vector3D(1, 0, 0)" + ".normalized()" * 100_000,
+    "x = [0]" + "[0]" * 100_000,
+    "x = " + "-" * 100_000 + "1",
+])
+def test_long_chains_raise_instead_of_crashing_the_interpreter(text):
+    with pytest.raises(prs.ScenarioError) as caught:
+        prs.loads(text + "\n", name="long.prs")
+    assert caught.value.id == "too-deeply-nested"
+    assert (caught.value.file, caught.value.line) == ("long.prs", 1)
+    assert len(caught.value.text) < 2000, "a window of the line, not all of it"
+
+
+def test_values_nested_by_a_loop_raise_when_sampled():
+    scenario = prs.loads("x = ()\nfor i in range(5000):\n    x = (x,)\n", name="nest.prs")
+    with pytest.raises(prs.ScenarioError, match="nested more than 1000 levels"):
+        scenario.sample()

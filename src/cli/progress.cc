@@ -50,18 +50,54 @@ std::string FormatProgressLine(int64_t done, int64_t total, double elapsed_s, in
   return head + FormatBar(fraction, bar_width) + tail;
 }
 
+std::string FormatHardSceneLine(int64_t done, int64_t total, int64_t attempts, int64_t rejections,
+                                double seconds, int width) {
+  const double rate = seconds > 0 ? attempts / seconds : 0.0;
+  const double rejected = attempts > 0 ? 100.0 * rejections / attempts : 0.0;
+  const std::string line =
+      fmt::format("prs: scene {} of {}: {} attempts in {}, {:.0f}/s, {:.1f}% rejected", done + 1,
+                  total, attempts, FormatDuration(seconds), rate, rejected);
+  return line.substr(0, std::max(width - 1, 0));
+}
+
 ProgressBar::ProgressBar(int64_t total, bool enabled)
-    : total_(total), enabled_(enabled), begin_(Clock::now()), last_draw_(begin_) {}
+    : total_(total), enabled_(enabled), begin_(Clock::now()), last_draw_(begin_),
+      last_done_(begin_) {}
+
+void ProgressBar::Attach(sampling::BatchOptions& options, sampling::BatchCallbacks& callbacks) {
+  if (!enabled_) return;
+  options.sample.live = &live_;
+  callbacks.tick = [this] { Tick(); };
+}
 
 ProgressBar::~ProgressBar() { Erase(); }
 
 void ProgressBar::Update(int64_t done) {
   if (!enabled_) return;
   const Clock::time_point now = Clock::now();
+  done_ = done;
+  last_done_ = now;
+  attempts_at_done_ = live_.attempts.load(std::memory_order_relaxed);
+  rejections_at_done_ = live_.rejections.load(std::memory_order_relaxed);
   if (now - begin_ < kShowAfter || (drawn_ && now - last_draw_ < kRedrawInterval)) return;
-  last_draw_ = now;
   const double elapsed_s = std::chrono::duration<double>(now - begin_).count();
-  const std::string line = FormatProgressLine(done, total_, elapsed_s, CalcTerminalWidth());
+  Draw(FormatProgressLine(done, total_, elapsed_s, CalcTerminalWidth()), now);
+}
+
+// While the batch waits for scene done_: after a second without a scene, its attempts.
+void ProgressBar::Tick() {
+  const Clock::time_point now = Clock::now();
+  if (now - last_done_ < kShowAfter || (drawn_ && now - last_draw_ < kRedrawInterval)) return;
+  const double waited_s = std::chrono::duration<double>(now - last_done_).count();
+  Draw(FormatHardSceneLine(done_, total_,
+                           live_.attempts.load(std::memory_order_relaxed) - attempts_at_done_,
+                           live_.rejections.load(std::memory_order_relaxed) - rejections_at_done_,
+                           waited_s, CalcTerminalWidth()),
+       now);
+}
+
+void ProgressBar::Draw(const std::string& line, Clock::time_point now) {
+  last_draw_ = now;
   std::fprintf(stderr, "\r%s\033[K", line.c_str());
   std::fflush(stderr);
   drawn_ = true;

@@ -65,9 +65,10 @@ class SceneWriterRun {
   int Run() {
     const auto begin = std::chrono::steady_clock::now();
     try {
-      const sampling::BatchOptions options = MakeBatchOptions();
-      const sampling::BatchSummary summary =
-          sampling::SampleBatch(program_, options, MakeCallbacks());
+      sampling::BatchOptions options = MakeBatchOptions();
+      sampling::BatchCallbacks callbacks = MakeCallbacks();
+      progress_.Attach(options, callbacks);
+      const sampling::BatchSummary summary = sampling::SampleBatch(program_, options, callbacks);
       writer_.Commit();
       progress_.Erase();
       const double seconds =

@@ -33,12 +33,13 @@ SamplingStats MeasureSampling(const lang::CompiledProgram& program, const StatsA
   ProgressBar progress(args.count, IsStderrTerminal());
   int64_t done = 0;
   const auto begin = std::chrono::steady_clock::now();
-  stats.summary = sampling::SampleBatch(
-      program, options, {.prepare = {}, .consume = [&](sampling::BatchScene&& scene) {
-                           stats.max_attempts_per_scene =
-                               std::max(stats.max_attempts_per_scene, scene.sampled.attempts);
-                           progress.Update(++done);
-                         }});
+  sampling::BatchCallbacks callbacks{.prepare = {}, .consume = [&](sampling::BatchScene&& scene) {
+                                       stats.max_attempts_per_scene = std::max(
+                                           stats.max_attempts_per_scene, scene.sampled.attempts);
+                                       progress.Update(++done);
+                                     }};
+  progress.Attach(options, callbacks);
+  stats.summary = sampling::SampleBatch(program, options, callbacks);
   stats.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - begin).count();
   return stats;
 }

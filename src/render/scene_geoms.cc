@@ -34,10 +34,10 @@ void AddSolid(mjvScene& out, int type, const Eigen::Vector3d& size, const Eigen:
 
 void AddLine(mjvScene& out, const Eigen::Vector3d& a_W, const Eigen::Vector3d& b_W, double width_m,
              const Rgba& rgba) {
-  mjvGeom& geom = NextGeom(out);
-  mjv_initGeom(&geom, mjGEOM_CAPSULE, nullptr, nullptr, nullptr, rgba.data());
-  mjv_makeConnector(&geom, mjGEOM_CAPSULE, width_m, a_W.x(), a_W.y(), a_W.z(), b_W.x(), b_W.y(),
-                    b_W.z());
+  const Eigen::Vector3d d_W = b_W - a_W;
+  const Eigen::Matrix3d R_W =
+      Eigen::Quaterniond::FromTwoVectors(Eigen::Vector3d::UnitZ(), d_W).toRotationMatrix();
+  AddSolid(out, mjGEOM_BOX, {width_m, width_m, d_W.norm() / 2}, (a_W + b_W) / 2, R_W, rgba);
 }
 
 // A camera: its body, and a wire frustum along its look axis (local +y, up +z) so that the

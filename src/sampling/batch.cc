@@ -125,7 +125,8 @@ class ReorderQueue {
   /// moves it and the finished scenes right after it into `ready`. Their slots stay reserved
   /// until the next call, so at most `window` scenes exist at a time. Rethrows the failure of
   /// `offset`, or throws BatchCancelled once `cancel` is set.
-  void TakeReady(int64_t offset, std::vector<BatchScene>& ready, const std::atomic<bool>* cancel) {
+  void TakeReady(int64_t offset, std::vector<BatchScene>& ready, const std::atomic<bool>* cancel,
+                 const std::function<void()>& tick) {
     std::unique_lock lock(mutex_);
     if (offset > next_take_) {
       next_take_ = offset;
@@ -137,7 +138,11 @@ class ReorderQueue {
     while (true) {
       if (cancel && cancel->load(std::memory_order_relaxed)) throw BatchCancelled();
       if (is_decided()) break;
-      scene_ready_.wait_for(lock, kCancelPollInterval, is_decided);
+      if (!scene_ready_.wait_for(lock, kCancelPollInterval, is_decided) && tick) {
+        lock.unlock();  // the tick may take a while (a terminal write): workers go on
+        tick();
+        lock.lock();
+      }
     }
     if (!slots_[offset % Window()]) std::rethrow_exception(failure_);
     for (int64_t next = offset; next < count_ && next < offset + Window(); ++next) {
@@ -226,7 +231,7 @@ BatchSummary SampleOnWorkers(const lang::CompiledProgram& program, const BatchOp
   }
   std::vector<BatchScene> ready;
   for (int64_t offset = 0; offset < options.count;) {
-    queue.TakeReady(offset, ready, options.cancel);
+    queue.TakeReady(offset, ready, options.cancel, callbacks.tick);
     for (BatchScene& item : ready) {
       if (IsCancelled(options)) throw BatchCancelled();
       summary.Add(item.sampled);
@@ -248,7 +253,7 @@ BatchSummary SampleBatch(const lang::CompiledProgram& program, const BatchOption
                          const BatchCallbacks& callbacks) {
   CheckArguments(options);
   const int threads = CountBatchThreads(options);
-  if (threads == 1) return SampleOnCallingThread(program, options, callbacks);
+  if (threads == 1 && !callbacks.tick) return SampleOnCallingThread(program, options, callbacks);
   return SampleOnWorkers(program, options, callbacks, threads);
 }
 

@@ -38,6 +38,10 @@ struct BatchCallbacks {
   /// Runs on the calling thread, once per scene, in index order. Optional (a batch run only
   /// for its summary).
   std::function<void(BatchScene&&)> consume;
+  /// Optional. Runs on the calling thread about every 50 ms while it waits for the next scene
+  /// (e.g. to redraw progress while one scene takes many attempts). When given, scenes are
+  /// sampled on worker threads even for threads == 1, so the calling thread stays free.
+  std::function<void()> tick;
 };
 
 /// Totals over the scenes handed to `consume`.

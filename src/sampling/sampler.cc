@@ -75,11 +75,13 @@ SampledScene SceneSampler::Sample(uint64_t seed, uint64_t index) {
   run.cache = cache_.get();
   while (result.attempts < options_.max_attempts) {
     ++result.attempts;
+    if (options_.live) options_.live->attempts.fetch_add(1, std::memory_order_relaxed);
     lang::AttemptResult attempt = lang::RunAttempt(program_, rng, run);
     if (auto* scene = std::get_if<lang::Scene>(&attempt)) {
       result.scene = std::move(*scene);
       return result;
     }
+    if (options_.live) options_.live->rejections.fetch_add(1, std::memory_order_relaxed);
     const lang::Rejection& rejection = std::get<lang::Rejection>(attempt);
     result.rejections.Add(rejection);
     // Nothing random ran, so retrying would only repeat this rejection.

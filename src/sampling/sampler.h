@@ -3,6 +3,7 @@
 // counted per reason.
 #pragma once
 
+#include <atomic>
 #include <cstdint>
 #include <map>
 #include <memory>
@@ -14,9 +15,17 @@
 
 namespace prs::sampling {
 
+/// Attempts and rejections counted as they happen, across threads (for progress displays
+/// while one scene is hard to find). Never changes a result.
+struct LiveCounts {
+  std::atomic<int64_t> attempts{0};
+  std::atomic<int64_t> rejections{0};
+};
+
 struct SampleOptions {
   lang::RunOptions run;
   int64_t max_attempts = 10'000;
+  LiveCounts* live = nullptr;  // optional; must outlive the samplers
 };
 
 /// Rejections of one scene (or many), keyed by (kind, culprit).

@@ -31,6 +31,12 @@ TEST(ProgressLineTest, FitsTheWidthAndShowsTheCounts) {
   EXPECT_LE(CalcDisplayWidth(FormatProgressLine(5, 10, 1.0, 20)), 19u);
 }
 
+TEST(ProgressLineTest, HardSceneLineShowsAttemptsAndRejections) {
+  const std::string line = FormatHardSceneLine(3, 10, 1'200'000, 1'199'000, 12.0, 100);
+  EXPECT_EQ(line, "prs: scene 4 of 10: 1200000 attempts in 12s, 100000/s, 99.9% rejected");
+  EXPECT_LE(CalcDisplayWidth(FormatHardSceneLine(3, 10, 5, 5, 1.0, 30)), 29u);
+}
+
 SamplingStats MakeStats() {
   SamplingStats stats;
   stats.file = "x.prs";

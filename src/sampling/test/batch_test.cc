@@ -218,6 +218,46 @@ TEST(BatchTest, StopsWhenCancelled) {
   }
 }
 
+// A tick for progress while a scene is hard: it runs on the calling thread while it waits, the
+// live counts add up to the summary, and the scenes are the same as without either.
+TEST(BatchTest, TicksWhileWaitingAndCountsAttemptsLiveWithoutChangingScenes) {
+  auto program = CompileOrDie(
+      "x = Range(0, 1)\nrequire x < 0.0002\n");  // about 5,000 attempts a scene
+  ASSERT_NE(program, nullptr);
+  LiveCounts live;
+  BatchOptions options;
+  options.seed = 3;
+  options.count = 4;
+  options.threads = 1;
+  options.sample.max_attempts = 1'000'000;
+  options.sample.live = &live;
+  std::vector<int64_t> with_tick, without_tick;
+  std::atomic<int> ticks{0};
+  const std::thread::id caller = std::this_thread::get_id();
+  BatchCallbacks callbacks;
+  callbacks.consume = [&](BatchScene&& scene) { with_tick.push_back(scene.sampled.attempts); };
+  callbacks.tick = [&] {
+    EXPECT_EQ(std::this_thread::get_id(), caller);
+    ++ticks;
+  };
+  const BatchSummary summary = SampleBatch(*program, options, callbacks);
+  EXPECT_EQ(live.attempts.load(), summary.attempts);
+  EXPECT_EQ(live.rejections.load(), summary.rejections.total);
+  EXPECT_GT(summary.attempts, 1000);
+  options.sample.live = nullptr;
+  SampleBatch(*program, options, {.prepare = {}, .consume = [&](BatchScene&& scene) {
+                                    without_tick.push_back(scene.sampled.attempts);
+                                  }});
+  EXPECT_EQ(with_tick, without_tick);
+  // Ticks need waiting: a scene slow enough to wait for.
+  auto slow = CompileOrDie("x = Range(0, 1)\nrequire x < 0.000002\n");
+  options.count = 1;
+  options.sample.max_attempts = 10'000'000;
+  ticks = 0;
+  SampleBatch(*slow, options, callbacks);
+  EXPECT_GT(ticks.load(), 0);
+}
+
 TEST(BatchTest, RejectsBadArguments) {
   auto program = CompileTableCube();
   ASSERT_NE(program, nullptr);
