@@ -189,7 +189,9 @@ TEST_F(PrsTestCommandTest, TerminationKillsRunningControllersAndSaysWhereToResum
   EXPECT_NE(ReadText(Path("err.txt")).find("interrupted after 0 episodes (resume with --start 0"),
             std::string::npos)
       << ReadText(Path("err.txt"));
-  EXPECT_TRUE(fs::exists(Path("r.jsonl.partial")));
+  // No episode finished, so no empty r.jsonl.partial is left behind.
+  EXPECT_FALSE(fs::exists(Path("r.jsonl.partial")));
+  EXPECT_FALSE(fs::exists(Path("r.jsonl")));
   for (const char* index : {"0", "1"}) {
     const std::string pid = ReadText(Path("pid") + "." + index);
     if (pid.empty()) continue;  // that episode had not started
