@@ -39,14 +39,16 @@ class Scenario {
         sampler_(*program_, options_) {}
 
   ScenePtr Sample(const py::object& seed_arg, const py::object& index_arg) {
-    const uint64_t seed = ToSceneNumber(seed_arg, "seed"), index = ToSceneNumber(index_arg, "index");
+    const uint64_t seed = ToSceneNumber(seed_arg, "seed"),
+                   index = ToSceneNumber(index_arg, "index");
     // The GIL stays held: it is what keeps two Python threads off the one cached sampler.
     return Wrap(Call([&] { return sampler_.Sample(seed, index); }));
   }
 
   std::vector<ScenePtr> SampleBatch(int64_t count, const py::object& seed_arg,
                                     const py::object& start_arg, std::optional<int> threads) {
-    const uint64_t seed = ToSceneNumber(seed_arg, "seed"), start = ToSceneNumber(start_arg, "start");
+    const uint64_t seed = ToSceneNumber(seed_arg, "seed"),
+                   start = ToSceneNumber(start_arg, "start");
     std::vector<sampling::SampledScene> sampled;
     sampled.reserve(size_t(std::clamp<int64_t>(count, 0, 1 << 16)));  // n may be a guess
     RunBatch(count, seed, start, threads,

@@ -35,7 +35,8 @@ std::string DescribeVariation(const SiteVariation* variation, int64_t scenes) {
 }  // namespace
 
 std::string FormatCheckHeader(const std::string& file, const std::string& verdict,
-                              const lang::CompiledProgram& program, const ScenarioOutline& outline) {
+                              const lang::CompiledProgram& program,
+                              const ScenarioOutline& outline) {
   return fmt::format("{}: {} ({}, {}, {})\n", file, verdict,
                      FormatCount(int64_t(program.modules.size()), "module"),
                      FormatCount(int64_t(outline.classes.size()), "class"),

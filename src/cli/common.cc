@@ -2,15 +2,14 @@
 #include "cli/common.h"
 
 #include <fmt/format.h>
-
 #include <unistd.h>
 
 #include <cerrno>
 #include <charconv>
+#include <cstdlib>
 #include <cstring>
 #include <filesystem>
 #include <fstream>
-#include <cstdlib>
 #include <iostream>
 #include <limits>
 #include <sstream>

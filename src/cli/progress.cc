@@ -61,7 +61,10 @@ std::string FormatHardSceneLine(int64_t done, int64_t total, int64_t attempts, i
 }
 
 ProgressBar::ProgressBar(int64_t total, bool enabled)
-    : total_(total), enabled_(enabled), begin_(Clock::now()), last_draw_(begin_),
+    : total_(total),
+      enabled_(enabled),
+      begin_(Clock::now()),
+      last_draw_(begin_),
       last_done_(begin_) {}
 
 void ProgressBar::Attach(sampling::BatchOptions& options, sampling::BatchCallbacks& callbacks) {

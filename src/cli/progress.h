@@ -39,8 +39,8 @@ class ProgressBar {
   Clock::time_point last_draw_;
   sampling::LiveCounts live_;
   int64_t done_ = 0;
-  Clock::time_point last_done_;      // when scene done_ - 1 was handed over
-  int64_t attempts_at_done_ = 0;     // live_ counts then
+  Clock::time_point last_done_;   // when scene done_ - 1 was handed over
+  int64_t attempts_at_done_ = 0;  // live_ counts then
   int64_t rejections_at_done_ = 0;
 };
 

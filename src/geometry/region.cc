@@ -301,8 +301,7 @@ ConvexRegion ErodeByBox(const ConvexRegion& region, const Eigen::Matrix3d& R_WB,
   return r;
 }
 
-ConvexRegion ErodeByRound(const ConvexRegion& region, const Eigen::Vector3d& axis,
-                          double radius) {
+ConvexRegion ErodeByRound(const ConvexRegion& region, const Eigen::Vector3d& axis, double radius) {
   RequireExtent("ErodeByRound", "radius", radius);
   RequireFinite("ErodeByRound", "axis", axis);
   if (region.empty_) return ConvexRegion::Empty();

@@ -68,7 +68,8 @@ void ForEachChild(const Expr& expr, const std::function<void(const Expr&)>& visi
 
 uint32_t CalcExprHeight(const Expr& expr) {
   uint32_t tallest_child = 0;
-  ForEachChild(expr, [&](const Expr& child) { tallest_child = std::max(tallest_child, child.height); });
+  ForEachChild(expr,
+               [&](const Expr& child) { tallest_child = std::max(tallest_child, child.height); });
   return tallest_child + 1;
 }
 

@@ -100,7 +100,8 @@ std::string CutWindow(const std::string& expanded, LineWindow window, uint32_t t
   std::vector<uint32_t> columns;
   ExpandTabs(expanded, &columns);  // no tabs left: just the column of each byte
   size_t lo = 0, hi = expanded.size();
-  while (lo < expanded.size() && (columns[lo] < window.first || IsContinuationByte(expanded[lo]))) ++lo;
+  while (lo < expanded.size() && (columns[lo] < window.first || IsContinuationByte(expanded[lo])))
+    ++lo;
   for (size_t i = lo; i < expanded.size(); ++i) {
     if (columns[i] >= window.first + window.count && !IsContinuationByte(expanded[i])) {
       hi = i;
@@ -134,7 +135,8 @@ void RenderSnippet(std::string* out, SourceSpan span, const std::string& fix_it,
   uint32_t shift = 0;
   const std::string shown = CutWindow(expanded, window, total, &shift);
   caret_col = caret_col - window.first + shift;
-  if (window.count < total) width = std::clamp<uint32_t>(width, 1, window.count + shift - caret_col);
+  if (window.count < total)
+    width = std::clamp<uint32_t>(width, 1, window.count + shift - caret_col);
 
   std::string gutter = fmt::format("{:>5} | ", lc.line);
   std::string blank(gutter.size() - 2, ' ');
@@ -273,10 +275,12 @@ const std::vector<DiagnosticKind>& DiagnosticCatalogue() {
       {"misplaced-self", "resolver", "`self` outside a class's property defaults"},
       {"misplaced-statement", "resolver", "`return`, `param`, ... where they cannot appear"},
       {"misplaced-definition", "resolver", "`class` or `def` inside a block"},
-      {"wrong-argument-count", "resolver, interpreter", "a call with too many or too few arguments"},
+      {"wrong-argument-count", "resolver, interpreter",
+       "a call with too many or too few arguments"},
       {"bad-argument", "resolver", "an unknown or repeated keyword argument"},
       {"duplicate-specifier", "planner", "one property set by two specifiers of an object"},
-      {"dependency-cycle", "planner", "an object's properties that depend on each other in a cycle"},
+      {"dependency-cycle", "planner",
+       "an object's properties that depend on each other in a cycle"},
       {"bad-specifier", "planner, interpreter", "a specifier applied to a value it cannot use"},
       {"type-error", "interpreter", "a value of the wrong type (`on 3`, `\"a\" + 1`)"},
       {"bad-value", "interpreter", "a value of the right type out of range (negative size, 1/0)"},

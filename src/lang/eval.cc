@@ -58,8 +58,10 @@ Value Interpreter::EvalNode(const Expr& expr) {
           std::vector<Value> elements;
           elements.reserve(node.elements.size());
           for (const ExprPtr& e : node.elements) elements.push_back(Eval(*e));
-          if constexpr (std::is_same_v<T, TupleExpr>) return CheckNesting(MakeTuple(std::move(elements)), expr.span);
-          else return CheckNesting(MakeList(std::move(elements)), expr.span);
+          if constexpr (std::is_same_v<T, TupleExpr>)
+            return CheckNesting(MakeTuple(std::move(elements)), expr.span);
+          else
+            return CheckNesting(MakeList(std::move(elements)), expr.span);
         } else if constexpr (std::is_same_v<T, DictExpr>) {
           auto dict = std::make_shared<DictData>();
           for (const auto& [k, v] : node.entries) {

@@ -64,7 +64,7 @@ class Interpreter {
 
   // --- expressions (eval.cc) ---
   void EnterNested(SourceSpan span);  // ++eval_depth_, or a limit error
-  Value Eval(const Expr& expr);      // EnterNested, then EvalNode
+  Value Eval(const Expr& expr);       // EnterNested, then EvalNode
   Value EvalNode(const Expr& expr);
   static constexpr int kMaxContainerDepth = 1000;
   Value CheckNesting(Value container, SourceSpan span);  // a limit error past kMaxContainerDepth
@@ -153,7 +153,8 @@ class Interpreter {
 
   // --- placement (placement.cc) ---
   Eigen::Vector3d PlacePosition(const ObjectPlan& plan, int index, SourceSpan span);
-  PositionConstraint EvalPositionConstraint(const Specifier& s, int index, ObjectPlan::OpenTurn open);
+  PositionConstraint EvalPositionConstraint(const Specifier& s, int index,
+                                            ObjectPlan::OpenTurn open);
   PositionConstraint EvalOnConstraint(const Specifier& s, int index, bool completely,
                                       ObjectPlan::OpenTurn open);
   PositionConstraint EvalSideConstraint(const Specifier& s, int index, ObjectPlan::OpenTurn open);

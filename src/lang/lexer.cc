@@ -312,7 +312,9 @@ bool Lexer::ReadEscape(std::string* out) {
     case 'r': out->push_back('\r'); return true;
     case '0': out->push_back('\0'); return true;
     case '\\': case '\'': case '"': out->push_back(c); return true;
-    case 'x': case 'u': return ReadHexEscape(c == 'x' ? 2 : 4, backslash, out);
+    case 'x':
+    case 'u':
+      return ReadHexEscape(c == 'x' ? 2 : 4, backslash, out);
     case '\r':
       if (Peek() == '\n') ++pos_;
       return false;
@@ -337,12 +339,14 @@ bool Lexer::ReadHexEscape(int digits, size_t backslash, std::string* out) {
   uint32_t code = 0;
   for (int i = 0; i < digits; ++i) {
     const char h = Peek();
-    const int value = std::isxdigit(static_cast<unsigned char>(h))
-                          ? (std::isdigit(static_cast<unsigned char>(h)) ? h - '0' : (h | 0x20) - 'a' + 10)
-                          : -1;
+    const int value =
+        std::isxdigit(static_cast<unsigned char>(h))
+            ? (std::isdigit(static_cast<unsigned char>(h)) ? h - '0' : (h | 0x20) - 'a' + 10)
+            : -1;
     if (value < 0) {
-      diags_.Error("bad-escape", Span(backslash, pos_),
-                   fmt::format("'\\{}' needs {} hexadecimal digits", digits == 2 ? 'x' : 'u', digits));
+      diags_.Error(
+          "bad-escape", Span(backslash, pos_),
+          fmt::format("'\\{}' needs {} hexadecimal digits", digits == 2 ? 'x' : 'u', digits));
       return true;
     }
     code = code * 16 + value;

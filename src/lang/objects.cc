@@ -39,7 +39,8 @@ Value Interpreter::CreateObject(const ObjectPlan& plan, SourceSpan span) {
       SetProperty(index, "position", Value(p), span);
     } else {
       RunPlanStep(step, index, span);
-      if (step.kind == PlanStepKind::kOrientation && plan.open_turn != ObjectPlan::OpenTurn::kNone) {
+      if (step.kind == PlanStepKind::kOrientation &&
+          plan.open_turn != ObjectPlan::OpenTurn::kNone) {
         CheckOpenTurn(index);
       }
     }

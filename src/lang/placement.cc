@@ -284,17 +284,21 @@ void Interpreter::CheckOpenTurn(int index) {
   const geometry::OrientedBox box = BoxOf(index);
   for (const OpenTurnCheck& check : open_turn_checks_) {
     if (check.index != index) continue;
-    if (geometry::ErodeByBox(check.box_region, box.R_WB, box.half_extents).Contains(box.p_center, 1e-9)) {
+    if (geometry::ErodeByBox(check.box_region, box.R_WB, box.half_extents)
+            .Contains(box.p_center, 1e-9)) {
       continue;
     }
-    const RejectionKind kind = IsSideSpecifier(check.specifier->kind) ? RejectionKind::kRelativePosition
-                                                                       : RejectionKind::kContainment;
+    const RejectionKind kind = IsSideSpecifier(check.specifier->kind)
+                                   ? RejectionKind::kRelativePosition
+                                   : RejectionKind::kContainment;
     std::string culprit = scene_.objects[index].DisplayName(index) + " " +
                           DescribeSpecifier(*check.specifier, program_.sources);
     const std::string detail = "with the orientation it turned to, " + DescribeBox(index) +
-                               " does not fit " + DescribeSpecifier(*check.specifier, program_.sources);
+                               " does not fit " +
+                               DescribeSpecifier(*check.specifier, program_.sources);
     if (options_.mode == SamplingMode::kNaive) {
-      if (!naive_violation_) naive_violation_ = Rejection{kind, std::move(culprit), check.specifier->span, detail};
+      if (!naive_violation_)
+        naive_violation_ = Rejection{kind, std::move(culprit), check.specifier->span, detail};
       continue;
     }
     open_turn_checks_.clear();

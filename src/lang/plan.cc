@@ -160,9 +160,9 @@ class Planner {
       return;
     }
     const PropertyDefault* base = cls_.FindDefault("orientation");
-    const bool turns_about_z =
-        orientation_specifier_ ? orientation_specifier_->kind == SpecifierKind::kFacingToward
-                               : !(base && base->expr);
+    const bool turns_about_z = orientation_specifier_
+                                   ? orientation_specifier_->kind == SpecifierKind::kFacingToward
+                                   : !(base && base->expr);
     const bool tilt_known = (!sources_.count("pitch") || !DependsOn("pitch", "position")) &&
                             (!sources_.count("roll") || !DependsOn("roll", "position"));
     if (turns_about_z && tilt_known) {

@@ -41,8 +41,7 @@ std::optional<uint64_t> ParseIndexParam(const httplib::Request& request, const c
 }  // namespace
 
 struct ViewerServer::Impl {
-  Impl(const lang::CompiledProgram& program, const sampling::SampleOptions& options,
-       PageInfo page)
+  Impl(const lang::CompiledProgram& program, const sampling::SampleOptions& options, PageInfo page)
       : program(&program), page(std::move(page)) {
     sampler.emplace(program, options);
   }
@@ -64,8 +63,9 @@ void ViewerServer::Impl::AnswerScene(const httplib::Request& request, httplib::R
                                      std::string (*format)(const sampling::SampledScene&)) {
   if (!sampler) {
     response.status = kBadRequest;
-    response.set_content(FormatErrorRecord("not-sampling", "this viewer shows the scenes of a "
-                                                           "scenes file and samples nothing"),
+    response.set_content(FormatErrorRecord("not-sampling",
+                                           "this viewer shows the scenes of a "
+                                           "scenes file and samples nothing"),
                          kJson);
     return;
   }
@@ -82,7 +82,8 @@ void ViewerServer::Impl::AnswerScene(const httplib::Request& request, httplib::R
     response.set_content(format(sampler->Sample(*seed, *index)), kJson);
   } catch (const lang::ScenarioError& failure) {
     response.status = kUnprocessable;
-    const std::string message = lang::RenderDiagnostic(failure.diagnostic(), program->sources, false);
+    const std::string message =
+        lang::RenderDiagnostic(failure.diagnostic(), program->sources, false);
     response.set_content(FormatErrorRecord(failure.diagnostic().id, message), kJson);
   }
 }

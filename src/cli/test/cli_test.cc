@@ -201,9 +201,11 @@ TEST_F(PrsTest, CheckNeverSaysOkAboveAnError) {
   const Result failed = Run({"check", file});
   EXPECT_EQ(failed.exit_code, 1);
   EXPECT_EQ(failed.out.find(": ok"), std::string::npos) << failed.out;
-  EXPECT_NE(failed.out.find("nested.prs: compiles, but sampling fails"), std::string::npos) << failed.out;
+  EXPECT_NE(failed.out.find("nested.prs: compiles, but sampling fails"), std::string::npos)
+      << failed.out;
   EXPECT_NE(failed.err.find("nested.prs:3:9: error: tuples, lists or dicts nested more than"),
-            std::string::npos) << failed.err;
+            std::string::npos)
+      << failed.err;
   const Result static_only = Run({"check", file, "-n", "0"});
   EXPECT_EQ(static_only.exit_code, 0) << static_only.err;
   EXPECT_NE(static_only.out.find("nested.prs: compiles (not sampled: -n 0)"), std::string::npos)

@@ -154,7 +154,8 @@ TEST(ErosionTest, DegenerateErosions) {
 TEST(ErosionTest, RoundErosionIsExactForPolytopesAndHoldsEveryTurn) {
   Rng rng(42);
   const ConvexRegion top = ConvexRegion::MakeRect3D({0.1, -0.2, 0.8}, CalcRotationZ(0.4), 0.6, 0.4);
-  const ConvexRegion solid = ConvexRegion::MakeCuboid({0, 0, 0}, RandomRotation(rng), 0.5, 0.4, 0.3);
+  const ConvexRegion solid =
+      ConvexRegion::MakeCuboid({0, 0, 0}, RandomRotation(rng), 0.5, 0.4, 0.3);
   const double r = 0.07;
   const ConvexRegion disk_centres = ErodeByRound(top, Eigen::Vector3d::UnitZ(), r);
   const ConvexRegion ball_centres = ErodeByRound(solid, Eigen::Vector3d::Zero(), r);

@@ -106,11 +106,13 @@ TEST(LexerTest, StringsAndEscapes) {
 }
 
 TEST(LexerTest, HexAndUnicodeEscapes) {
-  auto r = LexText(R"(a = '\x41\u00e9\u20ac')" "\n");
+  auto r = LexText(R"(a = '\x41\u00e9\u20ac')"
+                   "\n");
   ASSERT_FALSE(r->diags.has_errors());
   EXPECT_TRUE(r->diags.diagnostics().empty());
   EXPECT_EQ(r->tokens[2].text, "A\xC3\xA9\xE2\x82\xAC");
-  auto bad = LexText(R"(a = 'x\x4g')" "\n");
+  auto bad = LexText(R"(a = 'x\x4g')"
+                     "\n");
   EXPECT_EQ(FirstError(*bad), "bad-escape@1:7");
   EXPECT_TRUE(bad->diags.has_errors());
 }

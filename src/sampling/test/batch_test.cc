@@ -221,8 +221,8 @@ TEST(BatchTest, StopsWhenCancelled) {
 // A tick for progress while a scene is hard: it runs on the calling thread while it waits, the
 // live counts add up to the summary, and the scenes are the same as without either.
 TEST(BatchTest, TicksWhileWaitingAndCountsAttemptsLiveWithoutChangingScenes) {
-  auto program = CompileOrDie(
-      "x = Range(0, 1)\nrequire x < 0.0002\n");  // about 5,000 attempts a scene
+  auto program =
+      CompileOrDie("x = Range(0, 1)\nrequire x < 0.0002\n");  // about 5,000 attempts a scene
   ASSERT_NE(program, nullptr);
   LiveCounts live;
   BatchOptions options;

@@ -64,9 +64,8 @@ std::vector<DeepCase> DeepCases() {
       {"brackets", Repeat("x = ", "(", kTerms) + "1" + std::string(kTerms, ')')},
       {"lists", Repeat("x = ", "[", kTerms) + "1" + std::string(kTerms, ']')},
       {"sum in a requirement", Repeat("require 1", " + 1", kTerms) + " > 0"},
-      {"sum in a specifier",
-       "class Box:\n    width: 1\n    length: 1\n    height: 1\nb = Box at " +
-           Repeat("Vector3D(0, 0, 0)", " + Vector3D(0, 0, 0)", kTerms)},
+      {"sum in a specifier", "class Box:\n    width: 1\n    length: 1\n    height: 1\nb = Box at " +
+                                 Repeat("Vector3D(0, 0, 0)", " + Vector3D(0, 0, 0)", kTerms)},
   };
 }
 
@@ -75,7 +74,8 @@ TEST(DeepInputTest, EveryLongChainIsALocatedErrorNotACrash) {
     SCOPED_TRACE(c.name);
     auto compiled = Compile(c.text);
     ASSERT_TRUE(compiled->diagnostics.has_errors());
-    EXPECT_NE(compiled->rendered.find("nested too deeply"), std::string::npos) << compiled->rendered.substr(0, 2000);
+    EXPECT_NE(compiled->rendered.find("nested too deeply"), std::string::npos)
+        << compiled->rendered.substr(0, 2000);
     EXPECT_NE(compiled->rendered.find("deep.prs:"), std::string::npos);
     // The renderer shows a window of the 100,000-term line, not all of it.
     EXPECT_LT(compiled->rendered.size(), 2000u) << compiled->rendered.substr(0, 2000);
@@ -91,7 +91,9 @@ TEST(DeepInputTest, OneErrorThenTheNextStatementParses) {
 // A chain of `terms` operators of the given kind just under the parser's limit.
 std::string ChainProgram(int terms) {
   return "class Box:\n    width: 0.1\n    length: 0.1\n    height: 0.1\n"
-         "n = " + Repeat("Range(0, 1)", " + 1", terms) + "\n"
+         "n = " +
+         Repeat("Range(0, 1)", " + 1", terms) +
+         "\n"
          "b = Box at Vector3D(n, 0, 0)\n";
 }
 
@@ -119,8 +121,8 @@ TEST(DeepInputTest, TreesUnderTheLimitCompileAndSampleOnWorkerThreads) {
 TEST(DeepInputTest, DeepEvaluationThroughRecursiveCallsIsALimitError) {
   // Each call evaluates a tall tree before recursing: the call-depth limit times the tree
   // height must still fit a thread's stack, or be refused with a located error.
-  const std::string text = "def f(k):\n    return " + Repeat("(f(k - 1) if k > 0 else 0)", " + 1", 390) +
-                           "\nx = f(1000)\n";
+  const std::string text = "def f(k):\n    return " +
+                           Repeat("(f(k - 1) if k > 0 else 0)", " + 1", 390) + "\nx = f(1000)\n";
   auto compiled = Compile(text);
   ASSERT_FALSE(compiled->diagnostics.has_errors()) << compiled->rendered.substr(0, 2000);
   std::string error;
@@ -132,7 +134,8 @@ TEST(DeepInputTest, DeepEvaluationThroughRecursiveCallsIsALimitError) {
     }
   });
   worker.join();
-  EXPECT_NE(error.find("nested deeper than 2000 levels"), std::string::npos) << error.substr(0, 2000);
+  EXPECT_NE(error.find("nested deeper than 2000 levels"), std::string::npos)
+      << error.substr(0, 2000);
 }
 
 }  // namespace

@@ -108,7 +108,8 @@ TEST(OpenTurnTest, CompletelyOnFacingTowardIsExactAndUniform) {
     ++cells;
   }
   ASSERT_GE(cells, 15);
-  EXPECT_LT(chi_square, 51.18);  // below the 0.999 quantile for 24 degrees of freedom (fewer cells: stricter)
+  EXPECT_LT(chi_square,
+            51.18);  // below the 0.999 quantile for 24 degrees of freedom (fewer cells: stricter)
   // The superset's edge is where a wrong erosion shows: the distance to the nearest board
   // edge, by a two-sample Kolmogorov-Smirnov test at alpha = 0.001.
   auto edge_distances = [](const std::vector<Vector3d>& points) {
@@ -160,7 +161,8 @@ TEST(OpenTurnTest, YawFromThePositionWithCompletelyOn) {
     const Scene scene = sampler.Sample(9, i).scene;
     const SceneObject& spinner = Find(scene, "s");
     ExpectCompletelyOn(spinner, Find(scene, "board"));
-    const double yaw = std::atan2(-spinner.R_WO.toRotationMatrix()(0, 1), spinner.R_WO.toRotationMatrix()(1, 1));
+    const double yaw =
+        std::atan2(-spinner.R_WO.toRotationMatrix()(0, 1), spinner.R_WO.toRotationMatrix()(1, 1));
     EXPECT_NEAR(std::remainder(yaw - spinner.p_WO.x() * 20, 2 * M_PI), 0, 1e-9);
     if (HasFailure()) FAIL() << "scene " << i;
   }

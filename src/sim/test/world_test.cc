@@ -1,13 +1,14 @@
 // The simulated Table-Cube world: every scene object is in the model where the scene put it,
 // an arm stands where each robot does, on its support, whatever the robot box's height and yaw,
 // trays have walls, and the world rests under gravity.
+#include "sim/world.h"
+
 #include <gtest/gtest.h>
 
 #include <numbers>
 
 #include "sim/control.h"
 #include "sim/test/table_cube_scenes.h"
-#include "sim/world.h"
 
 namespace prs::sim {
 namespace {
