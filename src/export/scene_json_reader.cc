@@ -14,6 +14,21 @@ namespace {
 
 using nlohmann::json;
 
+// Scene JSON from `prs sample` nests values as deeply as the language allows its containers
+// (1,000 levels); deeper input is refused before the recursive conversion and dump below.
+constexpr int kMaxValueDepth = 1000;
+
+// True when `j` nests arrays or objects more than `limit` levels deep (recursion bounded by
+// `limit`).
+bool IsNestedDeeper(const json& j, int limit) {
+  if (!j.is_structured()) return false;
+  if (limit == 0) return true;
+  for (const json& element : j) {
+    if (IsNestedDeeper(element, limit - 1)) return true;
+  }
+  return false;
+}
+
 lang::Value ToValue(const json& j) {
   if (j.is_string()) return lang::MakeString(j.get<std::string>());
   if (j.is_boolean()) return lang::Value(j.get<bool>());
@@ -54,7 +69,13 @@ internal::Properties ReadProperties(const json& object, const std::string& where
   const json& entries = object.at("properties");
   if (!entries.is_object())
     throw std::invalid_argument(where + ": \"properties\" is not an object");
-  for (const auto& [key, value] : entries.items()) properties.emplace_back(key, ToValue(value));
+  for (const auto& [key, value] : entries.items()) {
+    if (IsNestedDeeper(value, kMaxValueDepth)) {
+      throw std::invalid_argument(fmt::format("{}: property \"{}\" is nested more than {} levels deep",
+                                              where, key, kMaxValueDepth));
+    }
+    properties.emplace_back(key, ToValue(value));
+  }
   return properties;
 }
 
@@ -92,7 +113,8 @@ ExportScene ReadSceneJson(std::string_view line) {
   ExportScene out;
   const json seed = scene.value("seed", json());
   const json index = scene.value("index", json());
-  out.title = fmt::format("seed {} index {}", seed.dump(), index.dump());
+  auto number_text = [](const json& j) { return j.is_number() ? j.dump() : std::string("?"); };
+  out.title = fmt::format("seed {} index {}", number_text(seed), number_text(index));
   if (seed.is_number_unsigned()) out.seed = seed.get<uint64_t>();
   if (index.is_number_unsigned()) out.index = index.get<uint64_t>();
   internal::NameTable names;

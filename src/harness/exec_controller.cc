@@ -269,8 +269,24 @@ std::string Shorten(std::string text) {
 // object (then the exit status decides).
 std::optional<EpisodeResult> ParseJsonAnswer(const std::string& line) {
   if (!line.starts_with('{')) return std::nullopt;
-  nlohmann::json answer = nlohmann::json::parse(line, nullptr, /*allow_exceptions=*/false);
+  // Records carry the answer's other fields; writing them recurses, so bound their depth.
+  constexpr int kMaxAnswerDepth = 64;
+  bool too_deep = false;
+  nlohmann::json answer = nlohmann::json::parse(
+      line,
+      [&](int depth, nlohmann::json::parse_event_t, nlohmann::json&) {
+        too_deep = too_deep || depth > kMaxAnswerDepth;
+        return true;
+      },
+      /*allow_exceptions=*/false);
   if (!answer.is_object()) return std::nullopt;
+  if (too_deep) {
+    return EpisodeResult{"bad-answer",
+                         fmt::format("the controller's last line nests JSON more than {} levels "
+                                     "deep",
+                                     kMaxAnswerDepth),
+                         {{"answer", Shorten(line)}}};
+  }
   const auto outcome = answer.find("outcome");
   if (outcome == answer.end() || !outcome->is_string() ||
       !IsOutcomeName(outcome->get<std::string>())) {

@@ -121,7 +121,12 @@ DrawProperties ReadDrawProperties(const nlohmann::json& object) {
     properties.shape_type = json["shape_type"].get<std::string>();
   if (json.contains("color")) {
     properties.color = ParseColorJson(json["color"]);
-    properties.color_text = json["color"].dump();
+    // For the "unknown color" note; a nested value is not dumped (it may be arbitrarily deep).
+    const nlohmann::json& color = json["color"];
+    const bool flat = !color.is_structured() ||
+                      std::none_of(color.begin(), color.end(),
+                                   [](const nlohmann::json& e) { return e.is_structured(); });
+    properties.color_text = flat ? color.dump() : "a nested value";
   }
   return properties;
 }

@@ -123,5 +123,41 @@ TEST_F(RoughEdgesTest, ExportSummaryNamesTheDirectoryOnce) {
   EXPECT_NE(r.err.find("worlds/ (table_cube_s0_i0.sdf"), std::string::npos) << r.err;
 }
 
+// Scene JSON and controller answers nested 100,000 levels deep: refused or ignored, never a
+// stack overflow in the readers or in the writers that dump what they read.
+TEST_F(RoughEdgesTest, DeeplyNestedJsonIsRefusedNotACrash) {
+  const Result one = Run({"sample", Example("table_cube.prs"), "-n", "1"});
+  ASSERT_EQ(one.exit_code, 0);
+  std::string line = one.out.substr(0, one.out.find('\n'));
+  const std::string deep = std::string(100'000, '[') + std::string(100'000, ']');
+  const size_t at = line.find("\"color\":\"0.5\"");
+  ASSERT_NE(at, std::string::npos);
+  line.insert(at, "\"deep\":" + deep + ",");
+  const std::string file = Write("deep.jsonl", line + "\n");
+  const Result exported = Run({"export", file, "-o", (dir_ / "d.xml").string()});
+  EXPECT_EQ(exported.exit_code, 1);
+  EXPECT_NE(exported.err.find("property \"deep\" is nested more than 1000 levels deep"),
+            std::string::npos)
+      << exported.err.substr(0, 500);
+  EXPECT_EQ(Run({"view", file, "--html", (dir_ / "d.html").string()}).exit_code, 1);
+  std::string color_line = one.out.substr(0, one.out.find('\n'));
+  color_line.replace(color_line.find("\"0.5\""), 5, deep);
+  const Result rendered =
+      Run({"render", Write("color.jsonl", color_line + "\n"), "-o", (dir_ / "c.png").string()});
+  EXPECT_EQ(rendered.exit_code, 0) << rendered.err.substr(0, 500);  // drawn in the default colour
+  // A controller whose answer nests 10,000 levels (within the 64 KiB of output kept): a bad
+  // answer, recorded.
+  const std::string controller =
+      "/usr/bin/python3 -c 'print(\"{\\\"outcome\\\": \\\"success\\\", \\\"x\\\": \" + "
+      "\"[\" * 10000 + \"]\" * 10000 + \"}\")'";
+  const Result tested = Run({"test", Example("table_cube.prs"), "--exec", controller, "-n", "1",
+                             "-o", (dir_ / "r.jsonl").string()});
+  EXPECT_EQ(tested.exit_code, 0) << tested.err.substr(0, 500);
+  std::ifstream in(dir_ / "r.jsonl");
+  const std::string record((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+  EXPECT_NE(record.find("\"outcome\":\"bad-answer\""), std::string::npos) << record.substr(0, 500);
+  EXPECT_NE(record.find("nests JSON more than 64 levels deep"), std::string::npos);
+}
+
 }  // namespace
 }  // namespace prs::cli
