@@ -95,9 +95,10 @@ Body ReadBody(const json& object, int index, internal::NameTable& names,
   if (q.norm() < 1e-9) throw std::invalid_argument(where + ": the quaternion is zero");
   facts.R_WO = Eigen::Quaterniond(q[0], q[1], q[2], q[3]);
   facts.dimensions = ReadNumbers<3>(object, "dimensions", where);
-  const json& allow = object.value("properties", json::object()).value("allowCollisions", json());
-  facts.allow_collisions = allow.is_boolean() && allow.get<bool>();
-  facts.properties = ReadProperties(object, where);
+  facts.properties = ReadProperties(object, where);  // checks their depth before any copy
+  for (const auto& [key, value] : facts.properties) {
+    if (key == "allowCollisions") facts.allow_collisions = value.Is<bool>() && value.As<bool>();
+  }
   return internal::MakeBody(facts, names, warnings);
 }
 
@@ -106,13 +107,16 @@ Body ReadBody(const json& object, int index, internal::NameTable& names,
 ExportScene ReadSceneJson(std::string_view line) {
   const json scene = json::parse(line, nullptr, /*allow_exceptions=*/false);
   if (scene.is_discarded()) throw std::invalid_argument("not valid JSON");
-  if (!scene.is_object() || scene.value("format", "") != "prs-scene/1")
+  if (!scene.is_object() || !scene.contains("format") || scene["format"] != "prs-scene/1")
     throw std::invalid_argument("not a scene: \"format\" is not \"prs-scene/1\"");
   const json& objects = Field(scene, "objects", "the scene");
   if (!objects.is_array()) throw std::invalid_argument("\"objects\" is not an array");
   ExportScene out;
-  const json seed = scene.value("seed", json());
-  const json index = scene.value("index", json());
+  // By reference: json::value() would copy the member, recursively, however deep it is.
+  static const json kMissing;
+  const auto seed_it = scene.find("seed"), index_it = scene.find("index");
+  const json& seed = seed_it == scene.end() ? kMissing : *seed_it;
+  const json& index = index_it == scene.end() ? kMissing : *index_it;
   auto number_text = [](const json& j) { return j.is_number() ? j.dump() : std::string("?"); };
   out.title = fmt::format("seed {} index {}", number_text(seed), number_text(index));
   if (seed.is_number_unsigned()) out.seed = seed.get<uint64_t>();

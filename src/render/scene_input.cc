@@ -87,8 +87,18 @@ Eigen::Vector3d ReadVector3(const nlohmann::json& object, const char* key, size_
   return v;
 }
 
+// object[key] by reference, or an empty object when it is missing. json::value() would copy
+// the member, recursively, and a scenes file may nest a member arbitrarily deep.
+const nlohmann::json& MemberOrEmpty(const nlohmann::json& object, const char* key) {
+  static const nlohmann::json kEmpty = nlohmann::json::object();
+  const auto it = object.find(key);
+  return it == object.end() ? kEmpty : *it;
+}
+
 Eigen::Quaterniond ReadQuaternion(const nlohmann::json& object, size_t index) {
-  const auto& orientation = object.value("orientation", nlohmann::json::object());
+  const nlohmann::json& orientation = MemberOrEmpty(object, "orientation");
+  if (!orientation.is_object())
+    FailJson(index, "'orientation.quaternion' is not an array of 4 numbers [w, x, y, z]");
   const auto it = orientation.find("quaternion");
   if (it == orientation.end() || !it->is_array() || it->size() != 4 ||
       !std::all_of(it->begin(), it->end(), [](const auto& x) { return x.is_number(); }))
@@ -113,7 +123,7 @@ std::optional<Rgba> ParseColorJson(const nlohmann::json& color) {
 
 DrawProperties ReadDrawProperties(const nlohmann::json& object) {
   DrawProperties properties;
-  const auto& json = object.value("properties", nlohmann::json::object());
+  const nlohmann::json& json = MemberOrEmpty(object, "properties");
   if (!json.is_object()) return properties;
   if (json.contains("model_name") && json["model_name"].is_string())
     properties.model_name = json["model_name"].get<std::string>();
@@ -135,7 +145,8 @@ RenderObject ReadJsonObject(const nlohmann::json& json, size_t index,
                             std::vector<std::string>* unknown_colors) {
   if (!json.is_object()) FailJson(index, "is not a JSON object");
   RenderObject object;
-  object.class_name = json.value("class", std::string("Object"));
+  const nlohmann::json& class_name = MemberOrEmpty(json, "class");
+  object.class_name = class_name.is_string() ? class_name.get<std::string>() : "Object";
   const auto name = json.find("name");
   object.name = name != json.end() && name->is_string()
                     ? name->get<std::string>()
@@ -169,7 +180,7 @@ RenderScene MakeRenderScene(const lang::Scene& scene, std::vector<std::string>* 
 RenderScene ParseRenderSceneJson(std::string_view line, std::vector<std::string>* unknown_colors) {
   const nlohmann::json json = nlohmann::json::parse(line, nullptr, /*allow_exceptions=*/false);
   if (json.is_discarded()) throw std::invalid_argument("not valid JSON");
-  if (!json.is_object() || json.value("format", std::string()) != "prs-scene/1")
+  if (!json.is_object() || MemberOrEmpty(json, "format") != "prs-scene/1")
     throw std::invalid_argument("not a prs-scene/1 object (no \"format\": \"prs-scene/1\")");
   const auto objects = json.find("objects");
   if (objects == json.end() || !objects->is_array())
