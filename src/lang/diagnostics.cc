@@ -135,8 +135,11 @@ void RenderSnippet(std::string* out, SourceSpan span, const std::string& fix_it,
   uint32_t shift = 0;
   const std::string shown = CutWindow(expanded, window, total, &shift);
   caret_col = caret_col - window.first + shift;
-  if (window.count < total)
-    width = std::clamp<uint32_t>(width, 1, window.count + shift - caret_col);
+  if (window.count < total) {
+    // The caret may sit just past the window's last column (a span at the end of the line).
+    const uint32_t room = window.count + shift > caret_col ? window.count + shift - caret_col : 1;
+    width = std::min(width, room);
+  }
 
   std::string gutter = fmt::format("{:>5} | ", lc.line);
   std::string blank(gutter.size() - 2, ' ');

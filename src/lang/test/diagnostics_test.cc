@@ -58,6 +58,31 @@ TEST(RenderDiagnosticTest, EmptySpanAtLineEndGetsOneCaret) {
             "      |        ^\n");
 }
 
+// A long line shows a window around the caret, marked with "..." where it was cut, and the
+// caret still points at the same character.
+TEST(RenderDiagnosticTest, LongLinesShowAWindowAroundTheCaret) {
+  SourceManager sm;
+  const std::string line = "x = " + std::string(300, 'a') + " + b" + std::string(300, 'c');
+  FileId f = sm.AddFile("t.prs", line + "\n");
+  const uint32_t b = uint32_t(line.find(" b")) + 1;
+  const std::string rendered = RenderDiagnostic(MakeError(f, b, b + 1, "unknown name 'b'"), sm);
+  const std::string shown = rendered.substr(rendered.find("| ") + 2);
+  const std::string source_line = shown.substr(0, shown.find('\n'));
+  const std::string caret_line = rendered.substr(rendered.rfind("| ") + 2);
+  EXPECT_TRUE(source_line.starts_with("...")) << rendered;
+  EXPECT_TRUE(source_line.ends_with("...")) << rendered;
+  EXPECT_LE(source_line.size(), 126u);
+  EXPECT_EQ(source_line[caret_line.find('^')], 'b') << rendered;
+  // A caret just past the end of a long line (a missing token) and bytes that are not UTF-8:
+  // one caret, no runaway underline.
+  const std::string tail = std::string(400, '\xff') + " +";
+  FileId g = sm.AddFile("u.prs", tail + "\n");
+  const std::string at_end =
+      RenderDiagnostic(MakeError(g, uint32_t(tail.size()), uint32_t(tail.size()), "expected"), sm);
+  EXPECT_LT(at_end.size(), 400u) << at_end.size();
+  EXPECT_TRUE(at_end.ends_with("^\n")) << at_end;
+}
+
 TEST(RenderDiagnosticTest, CaretColumnsCountCodePoints) {
   SourceManager sm;
   FileId f = sm.AddFile("t.prs", "s = 'é' + x\n");
