@@ -164,12 +164,22 @@ void RenderSnippet(std::string* out, SourceSpan span, const std::string& fix_it,
 
 void DiagnosticEngine::Report(Diagnostic diagnostic) {
   // Stages may meet the same fault twice (a class's cycle in each plan that uses it): keep one.
-  for (const Diagnostic& earlier : diagnostics_) {
-    if (earlier.id == diagnostic.id && earlier.message == diagnostic.message &&
-        earlier.has_span == diagnostic.has_span && earlier.span.file == diagnostic.span.file &&
-        earlier.span.begin == diagnostic.span.begin && earlier.span.end == diagnostic.span.end) {
-      return;
+  const SourceSpan& s = diagnostic.span;
+  std::string key = fmt::format("{}\n{}\n{}:{}:{}:{}", diagnostic.id, diagnostic.message,
+                                diagnostic.has_span, s.file, s.begin, s.end);
+  if (!seen_.insert(std::move(key)).second) return;
+  if (diagnostic.severity == Severity::kError && error_count_ >= kMaxErrors) {
+    // As Clang's -ferror-limit: past this, more errors only bury the first ones (and a line
+    // of 40,000 stray brackets would take minutes to print).
+    if (error_count_++ == kMaxErrors) {
+      Diagnostic stop;
+      stop.id = "too-many-errors";
+      stop.has_span = false;
+      stop.message = fmt::format("too many errors ({} shown); stopping here: fix these first",
+                                 kMaxErrors);
+      diagnostics_.push_back(std::move(stop));
     }
+    return;
   }
   if (diagnostic.severity == Severity::kError) ++error_count_;
   diagnostics_.push_back(std::move(diagnostic));
@@ -236,6 +246,7 @@ const std::vector<DiagnosticKind>& DiagnosticCatalogue() {
       // ---- lexer -----------------------------------------------------------
       {"invalid-character", "lexer", "a character that cannot start any token"},
       {"invalid-number", "lexer", "a malformed number literal such as `1e` or `1.2.3`"},
+      {"too-many-errors", "engine", "more than 50 errors: the rest are not reported"},
       {"unterminated-string", "lexer", "a string literal with no closing quote"},
       {"bad-escape", "lexer", "a `\\x` or `\\u` escape without its 2 or 4 hexadecimal digits"},
       {"unknown-escape", "lexer", "(warning) an escape such as `\\d` that Python keeps as written"},

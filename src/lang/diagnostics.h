@@ -5,6 +5,7 @@
 #include <exception>
 #include <string>
 #include <string_view>
+#include <unordered_set>
 #include <vector>
 
 #include "lang/source.h"
@@ -29,9 +30,11 @@ struct Diagnostic {
   std::string fix_it;  // suggested replacement text for span, may be empty
 };
 
-/// Collects diagnostics in the order they are reported.
+/// Collects diagnostics in the order they are reported, each once. After kMaxErrors errors,
+/// further errors are counted but not kept: one "too-many-errors" diagnostic stands for them.
 class DiagnosticEngine {
  public:
+  static constexpr size_t kMaxErrors = 50;
   void Report(Diagnostic diagnostic);
   /// Shorthand for an error with no notes or fix-it.
   void Error(std::string id, SourceSpan span, std::string message, std::string fix_it = "");
@@ -41,6 +44,9 @@ class DiagnosticEngine {
 
  private:
   std::vector<Diagnostic> diagnostics_;
+  // What identifies a diagnostic for Report()'s duplicate check: a hash set, so that a file
+  // with tens of thousands of errors (a line of 40,000 brackets) is not checked in O(n²).
+  std::unordered_set<std::string> seen_;
   size_t error_count_ = 0;
 };
 

@@ -151,6 +151,23 @@ TEST(DiagnosticEngineTest, CountsErrorsNotWarnings) {
   EXPECT_EQ(engine.diagnostics().size(), 2u);
 }
 
+// 40,000 stray brackets: 50 errors kept, one "too many errors" line, more than 50 counted, and
+// the same error reported twice kept once.
+TEST(DiagnosticEngineTest, StopsKeepingErrorsAfterTheLimit) {
+  SourceManager sm;
+  const std::string line = "x = " + std::string(40'000, ')');
+  FileId f = sm.AddFile("t.prs", line + "\n");
+  DiagnosticEngine engine;
+  Parse(f, sm, engine);
+  EXPECT_EQ(engine.diagnostics().size(), DiagnosticEngine::kMaxErrors + 1);
+  EXPECT_EQ(engine.diagnostics().back().id, "too-many-errors");
+  EXPECT_GT(engine.error_count(), DiagnosticEngine::kMaxErrors);
+  DiagnosticEngine twice;
+  twice.Error("unknown-name", SourceSpan{f, 0, 1}, "unknown name 'x'");
+  twice.Error("unknown-name", SourceSpan{f, 0, 1}, "unknown name 'x'");
+  EXPECT_EQ(twice.diagnostics().size(), 1u);
+}
+
 TEST(ScenarioErrorTest, CarriesTheDiagnostic) {
   Diagnostic d;
   d.id = "unknown-class";

@@ -134,38 +134,42 @@ TEST(OpenTurnTest, RejectionsNameTheContainmentSpecifier) {
   EXPECT_EQ(all.by_culprit.begin()->first.second, "m 'completely on board'");
 }
 
-TEST(OpenTurnTest, SideSpecifierWithFacingTowardHoldsForTheTurnedBox) {
-  auto program = CompileOrDie(std::string(kPrologue) +
-                              "m = Mug completely on board, ahead of Vector3D(0, 0, 0.02) by 0.01, "
-                              "facing toward Vector3D(-1.0, 2.0, 0)\n");
+// Compiles the prologue plus `creation`, then calls `check` on scenes 0..499 of `seed`,
+// stopping at the first scene that fails.
+template <typename Check>
+void CheckScenes(const std::string& creation, uint64_t seed, Check check) {
+  auto program = CompileOrDie(std::string(kPrologue) + creation);
   ASSERT_NE(program, nullptr);
   SceneSampler sampler(*program);
   for (int i = 0; i < 500; ++i) {
-    const Scene scene = sampler.Sample(5, i).scene;
-    const SceneObject& mug = Find(scene, "m");
-    ExpectCompletelyOn(mug, Find(scene, "board"));
-    ExpectBeyond(mug, Vector3d(0, 0, 0.02), Vector3d::UnitY(), 0.01);
-    ExpectFacing(mug, Vector3d(-1.0, 2.0, 0));
-    if (HasFailure()) FAIL() << "scene " << i;
+    check(sampler.Sample(seed, i).scene);
+    if (testing::Test::HasFailure()) FAIL() << "scene " << i;
   }
+}
+
+TEST(OpenTurnTest, SideSpecifierWithFacingTowardHoldsForTheTurnedBox) {
+  CheckScenes(
+      "m = Mug completely on board, ahead of Vector3D(0, 0, 0.02) by 0.01, "
+      "facing toward Vector3D(-1.0, 2.0, 0)\n",
+      5, [](const Scene& scene) {
+        const SceneObject& mug = Find(scene, "m");
+        ExpectCompletelyOn(mug, Find(scene, "board"));
+        ExpectBeyond(mug, Vector3d(0, 0, 0.02), Vector3d::UnitY(), 0.01);
+        ExpectFacing(mug, Vector3d(-1.0, 2.0, 0));
+      });
 }
 
 // A yaw that reads the position (through a class default) takes the same path.
 TEST(OpenTurnTest, YawFromThePositionWithCompletelyOn) {
-  auto program = CompileOrDie(std::string(kPrologue) +
-                              "class Spinner(Mug):\n    yaw: self.position.x * 20\n"
-                              "s = Spinner completely on board\n");
-  ASSERT_NE(program, nullptr);
-  SceneSampler sampler(*program);
-  for (int i = 0; i < 500; ++i) {
-    const Scene scene = sampler.Sample(9, i).scene;
-    const SceneObject& spinner = Find(scene, "s");
-    ExpectCompletelyOn(spinner, Find(scene, "board"));
-    const double yaw =
-        std::atan2(-spinner.R_WO.toRotationMatrix()(0, 1), spinner.R_WO.toRotationMatrix()(1, 1));
-    EXPECT_NEAR(std::remainder(yaw - spinner.p_WO.x() * 20, 2 * M_PI), 0, 1e-9);
-    if (HasFailure()) FAIL() << "scene " << i;
-  }
+  CheckScenes(
+      "class Spinner(Mug):\n    yaw: self.position.x * 20\ns = Spinner completely on board\n", 9,
+      [](const Scene& scene) {
+        const SceneObject& spinner = Find(scene, "s");
+        ExpectCompletelyOn(spinner, Find(scene, "board"));
+        const Matrix3d R = spinner.R_WO.toRotationMatrix();
+        const double yaw = std::atan2(-R(0, 1), R(1, 1));
+        EXPECT_NEAR(std::remainder(yaw - spinner.p_WO.x() * 20, 2 * M_PI), 0, 1e-9);
+      });
 }
 
 }  // namespace
