@@ -221,8 +221,17 @@ std::optional<std::vector<std::string>> ReadLines(const std::string& path) {
 
 int64_t CountNonBlank(const std::vector<std::string>& lines) {
   int64_t n = 0;
-  for (const std::string& line : lines) n += line.find_first_not_of(" \t\r") != std::string::npos;
+  for (const std::string& line : lines) n += !IsBlankLine(line);
   return n;
+}
+
+bool IsBlankLine(std::string_view line) {
+  return line.find_first_not_of(" \t\r") == std::string_view::npos;
+}
+
+void PrintNoScenes(const std::string& path) {
+  PrintError(
+      fmt::format("{} has no scenes: it is empty (write one with prs sample -o FILE)", path));
 }
 
 }  // namespace prs::cli

@@ -97,7 +97,11 @@ bool IsStdoutTerminal();
 bool IsScenesFile(const std::string& path);
 /// The file's lines; prints an error and returns nullopt if it cannot be read.
 std::optional<std::vector<std::string>> ReadLines(const std::string& path);
+/// True for a line of only spaces, tabs and carriage returns (skipped in scenes files).
+bool IsBlankLine(std::string_view line);
 /// The lines that are not blank.
 int64_t CountNonBlank(const std::vector<std::string>& lines);
+/// Prints that the scenes file `path` holds no scene (an error for every command reading one).
+void PrintNoScenes(const std::string& path);
 
 }  // namespace prs::cli

@@ -97,7 +97,7 @@ int ExportScenesFile(const ExportArgs& args, exporting::Format format,
   WarningSet warnings;
   int64_t written = 0;
   for (size_t i = 0; i < lines.size(); ++i) {
-    if (lines[i].find_first_not_of(" \t\r") == std::string::npos) continue;
+    if (IsBlankLine(lines[i])) continue;
     try {
       const exporting::ExportScene scene = exporting::ReadSceneJson(lines[i]);
       warnings.Add(scene.warnings);
@@ -126,12 +126,12 @@ int RunExport(const ExportArgs& args) {
   }
   const auto lines = ReadLines(args.scenario.file);
   if (!lines) return kExitScenarioError;
-  if (CountNonBlank(*lines) == 0) {
-    PrintError(fmt::format("{} has no scenes: it is empty (write one with prs sample -o FILE)",
-                           args.scenario.file));
+  const int64_t scenes = CountNonBlank(*lines);
+  if (scenes == 0) {
+    PrintNoScenes(args.scenario.file);
     return kExitScenarioError;
   }
-  const auto target = PlanExportTarget(args.output, *format, CountNonBlank(*lines),
+  const auto target = PlanExportTarget(args.output, *format, scenes,
                                        fs::path(args.scenario.file).stem().string());
   if (!target) return kExitUsage;
   return ExportScenesFile(args, *format, *lines, *target);

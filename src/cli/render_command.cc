@@ -59,7 +59,7 @@ std::vector<render::RenderScene> ReadScenesFile(const RenderArgs& args) {
   uint64_t scene_index = 0;
   for (int line_number = 1; std::getline(in, line) && int64_t(scenes.size()) < args.range.count;
        ++line_number) {
-    if (line.find_first_not_of(" \t\r") == std::string::npos) continue;
+    if (IsBlankLine(line)) continue;
     if (scene_index++ < args.range.start) continue;
     try {
       scenes.push_back(render::ParseRenderSceneJson(line));

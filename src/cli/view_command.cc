@@ -100,7 +100,7 @@ std::optional<std::string> MakeScenesFilePage(const ViewArgs& args) {
   std::vector<std::string> records;
   for (size_t i = 0; i < lines->size(); ++i) {
     const std::string& line = (*lines)[i];
-    if (line.find_first_not_of(" \t\r") == std::string::npos) continue;
+    if (IsBlankLine(line)) continue;
     try {
       exporting::ReadSceneJson(line);
     } catch (const std::invalid_argument& error) {
@@ -110,8 +110,7 @@ std::optional<std::string> MakeScenesFilePage(const ViewArgs& args) {
     records.push_back(viewer::FormatViewRecordOfLine(line));
   }
   if (records.empty()) {
-    PrintError(fmt::format("{} has no scenes: it is empty (write one with prs sample -o FILE)",
-                           args.scenario.file));
+    PrintNoScenes(args.scenario.file);
     return std::nullopt;
   }
   return viewer::MakeStandalonePage({args.scenario.file, 0, 0}, records);

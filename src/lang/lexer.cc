@@ -339,10 +339,10 @@ bool Lexer::ReadHexEscape(int digits, size_t backslash, std::string* out) {
   uint32_t code = 0;
   for (int i = 0; i < digits; ++i) {
     const char h = Peek();
-    const int value =
-        std::isxdigit(static_cast<unsigned char>(h))
-            ? (std::isdigit(static_cast<unsigned char>(h)) ? h - '0' : (h | 0x20) - 'a' + 10)
-            : -1;
+    const int value = h >= '0' && h <= '9'   ? h - '0'
+                      : h >= 'a' && h <= 'f' ? h - 'a' + 10
+                      : h >= 'A' && h <= 'F' ? h - 'A' + 10
+                                             : -1;
     if (value < 0) {
       diags_.Error(
           "bad-escape", Span(backslash, pos_),
