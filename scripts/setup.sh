@@ -1,29 +1,40 @@
 #!/usr/bin/env bash
 # Installs the Debian packages the project builds with (idempotent: only what is missing).
-# Usage: scripts/setup.sh        (as root on Debian 12; uses sudo when not root)
+# Usage: scripts/setup.sh [app|all]   (as root on Debian 12; uses sudo when not root)
+#   app: what the `prs` program needs to build and run (scripts/demo.sh)
+#   all: that and everything the tests, benchmarks, fuzzing and the Python package need (default)
 set -euo pipefail
+set_name=${1:-all}
+case "$set_name" in
+  app|all) ;;
+  *) echo "usage: scripts/setup.sh [app|all]" >&2; exit 2 ;;
+esac
 
+# What `prs` needs (scripts/build.sh app).
 packages=(
   build-essential cmake ninja-build pkg-config git
+  ccache                 # compiler cache: rebuilds and fresh clones reuse earlier objects
   libeigen3-dev          # linear algebra for the geometry core
-  libgtest-dev libgmock-dev  # unit tests
-  libbenchmark-dev       # micro-benchmarks
   libfmt-dev             # string formatting in diagnostics and output
   libcli11-dev           # the prs command line
   nlohmann-json3-dev     # scene JSON output and parsing
-  clang libclang-rt-14-dev  # libFuzzer for the front-end fuzz target
   libmujoco-dev          # physics for the simulated case study (src/sim), and prs render
   libcpp-httplib-dev     # prs view's local HTTP server
+  libtinygltf-dev        # prs export: writes glTF
+  libegl-dev libegl-mesa0 libgl1-mesa-dri  # prs render: MuJoCo's renderer on EGL with
+                         # Mesa's software rasteriser (llvmpipe), no GPU or display
+  libpng-dev             # prs render: PNG files
+)
+# What the tests, benchmarks, fuzzing and the Python package add (scripts/test.sh).
+[[ $set_name == all ]] && packages+=(
+  libgtest-dev libgmock-dev  # unit tests
+  libbenchmark-dev       # micro-benchmarks
+  clang libclang-rt-14-dev  # libFuzzer for the front-end fuzz target
   chromium               # prs view's end-to-end test (headless, driven by puppeteer-core)
   pybind11-dev python3-dev python3-numpy  # the Python package (python/)
   python3-pip python3-setuptools python3-wheel  # pip install --no-build-isolation . (offline)
   python3-pytest python3-matplotlib  # Python tests and the plotting example
-  libtinygltf-dev        # prs export: writes glTF; tests read it back
   liburdfdom-dev libsdformat-dev  # prs export tests: URDF and SDF read by their own parsers
-  libegl-dev libegl-mesa0 libgl1-mesa-dri  # prs render: MuJoCo's renderer on EGL with
-                         # Mesa's software rasteriser (llvmpipe), no GPU or display
-  libpng-dev             # prs render: PNG files
-  ccache                 # compiler cache: rebuilds and fresh clones reuse earlier objects
   python3                # prs test's example controller (examples/controllers/reach_check.py) in the tests
 )
 # prs view bundles three.js with npm at build time; keep a Node.js that is already installed
