@@ -4,6 +4,7 @@
 #include <stdexcept>
 
 #include "lang/interp_internal.h"
+#include "lang/requirement_form.h"
 
 namespace prs::lang {
 
@@ -246,7 +247,9 @@ void Interpreter::ExecRequire(const RequireStmt& node, SourceSpan span) {
   }
   if (Truthy(Eval(*node.condition), node.condition->span)) return;
   const LineColumn where = program_.sources.CalcLineColumn(span.file, span.begin);
-  Reject(RejectionKind::kRequirement,
+  // Naive mode counts requirements as the paper's Table II does (lang/requirement_form.h).
+  Reject(options_.mode == SamplingMode::kNaive ? ClassifyRequirement(*node.condition)
+                                               : RejectionKind::kRequirement,
          "require at " + program_.sources.path(span.file) + ":" + std::to_string(where.line), span);
 }
 

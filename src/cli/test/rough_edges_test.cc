@@ -147,8 +147,9 @@ TEST_F(RoughEdgesTest, DeeplyNestedJsonIsRefusedNotACrash) {
   EXPECT_EQ(rendered.exit_code, 0) << rendered.err.substr(0, 500);  // drawn in the default colour
   // A format or class of the wrong type: a located message, not the JSON library's.
   const std::string odd = Write("odd.jsonl", "{\"format\":[[1]],\"objects\":[]}\n");
-  for (const std::string& command : {"render", "export"}) {
-    const Result r = Run({command, odd, "-o", (dir_ / (command == "render" ? "o.png" : "o.xml")).string()});
+  for (const std::string command : {"render", "export"}) {
+    const Result r =
+        Run({command, odd, "-o", (dir_ / (command == "render" ? "o.png" : "o.xml")).string()});
     EXPECT_EQ(r.exit_code, 1) << command;
     EXPECT_EQ(r.err.find("json.exception"), std::string::npos) << r.err;
     EXPECT_NE(r.err.find("odd.jsonl:1:"), std::string::npos) << r.err;

@@ -36,6 +36,20 @@ SampleOptions NaiveOptions() {
   return naive;
 }
 
+// The x and y of tr_1, tr_2 and the cube, appended to six lists.
+void RecordTrayAndCubeXY(const Scene& scene, std::vector<std::vector<double>>& into) {
+  const Vector3d p[] = {Find(scene, "tr_1").p_WO, Find(scene, "tr_2").p_WO,
+                        FindClass(scene, "Cube").p_WO};
+  for (int k = 0; k < 3; ++k) {
+    into[2 * k].push_back(p[k].x());
+    into[2 * k + 1].push_back(p[k].y());
+  }
+}
+
+// The two-sample Kolmogorov-Smirnov critical value at alpha = 0.001 for n = m = SCENES (six
+// tests per comparison, so a family-wise alpha under 0.006).
+double KsCritical(int scenes) { return 1.949 * std::sqrt(2.0 / scenes); }
+
 // What every scene of every example must satisfy: no two boxes overlap (unless an object allows
 // collisions) and every box lies in the 3 m x 3 m x 3 m workspace of examples/model.prs.
 void ExpectNoCollisionsAndInsideWorkspace(const Scene& scene) {
@@ -215,22 +229,67 @@ TEST(ExamplesTest, NaiveAndRegionSamplingAgreeInDistributionOnTableCube) {
   SceneSampler region_sampler(*program), naive_sampler(*program, NaiveOptions());
   constexpr int kScenes = 400;
   std::vector<std::vector<double>> region(6), baseline(6);
-  auto record = [](const Scene& scene, std::vector<std::vector<double>>& into) {
-    const Vector3d p[] = {Find(scene, "tr_1").p_WO, Find(scene, "tr_2").p_WO,
-                          FindClass(scene, "Cube").p_WO};
-    for (int k = 0; k < 3; ++k) {
-      into[2 * k].push_back(p[k].x());
-      into[2 * k + 1].push_back(p[k].y());
-    }
-  };
   for (uint64_t i = 0; i < kScenes; ++i) {
-    record(region_sampler.Sample(21, i).scene, region);
-    record(naive_sampler.Sample(22, i).scene, baseline);
+    RecordTrayAndCubeXY(region_sampler.Sample(21, i).scene, region);
+    RecordTrayAndCubeXY(naive_sampler.Sample(22, i).scene, baseline);
   }
-  // Critical value of the two-sample test at alpha = 0.001 for n = m = 400 (six tests, so a
-  // family-wise alpha under 0.006).
-  const double critical = 1.949 * std::sqrt(2.0 / kScenes);
-  for (int k = 0; k < 6; ++k) EXPECT_LT(KolmogorovSmirnov(region[k], baseline[k]), critical) << k;
+  for (int k = 0; k < 6; ++k) {
+    EXPECT_LT(KolmogorovSmirnov(region[k], baseline[k]), KsCritical(kScenes)) << k;
+  }
+}
+
+// examples/table_cube_naive.prs states Figure 1 as requirements: its scenes keep every relation,
+// naive mode counts its failed requirements as the paper does, and region mode as requirements.
+TEST(ExamplesTest, TableCubeNaiveFileCountsRequirementsAsThePaperDoes) {
+  auto program = CompileExample("table_cube_naive.prs");
+  ASSERT_NE(program, nullptr);
+  for (const bool naive : {true, false}) {
+    SceneSampler sampler(*program, naive ? NaiveOptions() : SampleOptions{});
+    RejectionCounts counts;
+    for (uint64_t i = 0; i < 100; ++i) {
+      const SampledScene sampled = sampler.Sample(1, i);
+      counts.Merge(sampled.rejections);
+      const Scene& scene = sampled.scene;
+      const SceneObject& t = Find(scene, "t");
+      const SceneObject& tr_1 = Find(scene, "tr_1");
+      const SceneObject& tr_2 = Find(scene, "tr_2");
+      ExpectCompletelyOn(tr_1, t);
+      ExpectCompletelyOn(tr_2, t);
+      ExpectBeyond(tr_1, Find(scene, "r1").p_WO, Vector3d::UnitY());
+      ExpectBeyond(tr_2, Find(scene, "r2").p_WO, Vector3d::UnitY());
+      ExpectBeyond(tr_1, t.p_WO, -Vector3d::UnitX());
+      ExpectBeyond(tr_2, t.p_WO, Vector3d::UnitX());
+      ExpectCompletelyOn(Find(scene, "cube"), tr_1);
+      ExpectNoCollisionsAndInsideWorkspace(scene);
+    }
+    const auto count = [&](lang::RejectionKind kind) {
+      auto it = counts.by_kind.find(kind);
+      return it == counts.by_kind.end() ? int64_t{0} : it->second;
+    };
+    SCOPED_TRACE(naive ? "naive" : "region");
+    EXPECT_GT(count(lang::RejectionKind::kCollision), 0);
+    EXPECT_EQ(count(lang::RejectionKind::kRequirement) > 0, !naive);
+    EXPECT_EQ(count(lang::RejectionKind::kRelativePosition) > 0, naive);
+    EXPECT_EQ(count(lang::RejectionKind::kContainment) > 0, naive);
+  }
+}
+
+// The hand-written naive file and Figure 1 with the same objects give the same scenes in law.
+TEST(ExamplesTest, TableCubeNaiveFileAgreesInDistributionWithFigureOne) {
+  auto naive_file = CompileExample("table_cube_naive.prs");
+  auto figure_one = CompileExample("table_cube_paper_model.prs");
+  ASSERT_NE(naive_file, nullptr);
+  ASSERT_NE(figure_one, nullptr);
+  SceneSampler naive_sampler(*naive_file), figure_sampler(*figure_one);
+  constexpr int kScenes = 400;
+  std::vector<std::vector<double>> naive(6), figure(6);
+  for (uint64_t i = 0; i < kScenes; ++i) {
+    RecordTrayAndCubeXY(naive_sampler.Sample(31, i).scene, naive);
+    RecordTrayAndCubeXY(figure_sampler.Sample(32, i).scene, figure);
+  }
+  for (int k = 0; k < 6; ++k) {
+    EXPECT_LT(KolmogorovSmirnov(naive[k], figure[k]), KsCritical(kScenes)) << k;
+  }
 }
 
 }  // namespace
