@@ -1,19 +1,28 @@
 #!/usr/bin/env bash
-# Builds the libFuzzer target (scripts/build.sh fuzz) and fuzzes the language stage for a
-# bounded time. Usage: scripts/fuzz.sh [seconds] [long]   (default 30 s)
-# Replays tests/fuzz/regressions/*.prs first, then fuzzes from a scratch corpus in build-fuzz/
-# seeded with examples/, tests/lang/bad/ and tests/fuzz/corpus/. With `long`, inputs up to
-# 1 MiB from a separate corpus seeded with 100,000-term-class chains (tests/fuzz/
-# make_long_seeds.py), for the stack-depth limits. Exits non-zero on any crash, hang (> 5 s per
-# input; 20 s in the long run), leak, out-of-memory or sanitizer report; artifacts go to
-# build-fuzz/artifacts/.
+# Builds a libFuzzer target (scripts/build.sh fuzz) and fuzzes it for a bounded time.
+# Usage: scripts/fuzz.sh [seconds] [long|scenes]   (default 30 s, the language)
+#   (none): the language stage (prs_lang_fuzz), inputs up to 4 KiB, from a scratch corpus in
+#           build-fuzz/ seeded with examples/, tests/lang/bad/ and tests/fuzz/corpus/;
+#   long:   the language stage with inputs up to 1 MiB, from a separate corpus seeded with
+#           100,000-term-class chains (tests/fuzz/make_long_seeds.py), for the stack limits;
+#   scenes: the readers of other programs' text (prs_scene_json_fuzz): scenes-file lines as
+#           prs export and prs render read them, and controller answers, seeded with
+#           tests/fuzz/scene_corpus/.
+# Replays the target's regression inputs (tests/fuzz/regressions/) first. Exits non-zero on any
+# crash, hang (> 5 s per input; 20 s in the long run), leak, out-of-memory or sanitizer report;
+# artifacts go to build-fuzz/artifacts/.
 set -euo pipefail
 cd "$(dirname "$0")/.."
 seconds=${1:-30}
 mode=${2:-}
-scripts/build.sh fuzz prs_lang_fuzz
+case "$mode" in
+  ""|long) target=prs_lang_fuzz; regression_glob='*.prs' ;;
+  scenes)  target=prs_scene_json_fuzz; regression_glob='*.json*' ;;
+  *) echo "usage: scripts/fuzz.sh [seconds] [long|scenes]" >&2; exit 2 ;;
+esac
+scripts/build.sh fuzz "$target"
 
-fuzzer=build-fuzz/src/fuzz/prs_lang_fuzz
+fuzzer=build-fuzz/src/fuzz/$target
 artifacts=build-fuzz/artifacts
 export ASAN_OPTIONS=detect_leaks=1 UBSAN_OPTIONS=print_stacktrace=1
 if [[ $mode == long ]]; then
@@ -24,6 +33,13 @@ if [[ $mode == long ]]; then
   export PRS_FUZZ_MAX_BYTES=$((1024 * 1024))
   flags=(-timeout=20 -rss_limit_mb=2048 -max_len=$PRS_FUZZ_MAX_BYTES -len_control=0
          -dict=tests/fuzz/prs.dict -artifact_prefix="$artifacts"/ -print_final_stats=1)
+elif [[ $mode == scenes ]]; then
+  corpus=build-fuzz/corpus-scenes
+  log=build-fuzz/fuzz-scenes.log
+  mkdir -p "$corpus" "$artifacts"
+  cp tests/fuzz/scene_corpus/* "$corpus"/
+  flags=(-timeout=5 -rss_limit_mb=2048 -max_len=8192 -dict=tests/fuzz/scene_json.dict
+         -artifact_prefix="$artifacts"/ -print_final_stats=1)
 else
   corpus=build-fuzz/corpus
   log=build-fuzz/fuzz.log
@@ -34,7 +50,7 @@ else
 fi
 
 shopt -s nullglob
-regressions=(tests/fuzz/regressions/*.prs)
+regressions=(tests/fuzz/regressions/$regression_glob)
 if ((${#regressions[@]})); then
   echo "fuzz: replaying ${#regressions[@]} regression input(s)" >&2
   if ! "$fuzzer" "${flags[@]}" "${regressions[@]}" >"$log" 2>&1; then

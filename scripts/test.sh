@@ -1,8 +1,9 @@
 #!/usr/bin/env bash
 # Sets up, builds and runs every test: the Release build (C++ tests, the simulated case study,
 # the headless-Chromium viewer test), the Python package (scripts/test_python.sh), the same C++
-# tests under AddressSanitizer + UndefinedBehaviorSanitizer, then libFuzzer over the language
-# stage: 20 s of ordinary inputs and 10 s of inputs up to 1 MiB (long chains; scripts/fuzz.sh).
+# tests under AddressSanitizer + UndefinedBehaviorSanitizer, then libFuzzer: the language stage
+# for 20 s of ordinary inputs and 10 s of inputs up to 1 MiB (long chains), and the readers of
+# scenes files and controller answers for 10 s (scripts/fuzz.sh).
 # Exits non-zero if anything fails.
 set -euo pipefail
 cd "$(dirname "$0")/.."
@@ -15,3 +16,4 @@ ASAN_OPTIONS=detect_leaks=1 UBSAN_OPTIONS=print_stacktrace=1 \
   ctest --test-dir build-asan --output-on-failure -j2
 scripts/fuzz.sh 20
 scripts/fuzz.sh 10 long
+scripts/fuzz.sh 10 scenes

@@ -297,8 +297,7 @@ void Interpreter::CheckOpenTurn(int index) {
                                " does not fit " +
                                DescribeSpecifier(*check.specifier, program_.sources);
     if (options_.mode == SamplingMode::kNaive) {
-      if (!naive_violation_)
-        naive_violation_ = Rejection{kind, std::move(culprit), check.specifier->span, detail};
+      NoteNaiveViolation(Rejection{kind, std::move(culprit), check.specifier->span, detail});
       continue;
     }
     open_turn_checks_.clear();
@@ -394,15 +393,23 @@ Vector3d Interpreter::SampleNaive(const std::vector<PositionConstraint>& constra
     p = geometry::RegionSampler(domain).Sample(rng());
   }
   for (const PositionConstraint& c : constraints) {
-    if (naive_violation_ || c.is_point || c.region.Contains(p, 1e-9)) continue;
-    naive_violation_ = Rejection{
+    if (c.is_point || c.region.Contains(p, 1e-9)) continue;
+    NoteNaiveViolation(Rejection{
         IsRelativeSpecifier(c.specifier->kind) ? RejectionKind::kRelativePosition
                                                : RejectionKind::kContainment,
         scene_.objects[index].DisplayName(index) + " " +
             DescribeSpecifier(*c.specifier, program_.sources),
-        c.specifier->span, ""};
+        c.specifier->span, ""});
   }
   return p;
+}
+
+void Interpreter::NoteNaiveViolation(Rejection violation) {
+  const bool first = !naive_violation_;
+  const bool relative_before_containment =
+      naive_violation_ && naive_violation_->kind == RejectionKind::kContainment &&
+      violation.kind == RejectionKind::kRelativePosition;
+  if (first || relative_before_containment) naive_violation_ = std::move(violation);
 }
 
 }  // namespace prs::lang::internal

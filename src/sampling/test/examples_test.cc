@@ -7,6 +7,7 @@
 #include <algorithm>
 #include <cmath>
 #include <filesystem>
+#include <map>
 
 #include "sampling/test/scene_checks.h"
 
@@ -272,6 +273,25 @@ TEST(ExamplesTest, TableCubeNaiveFileCountsRequirementsAsThePaperDoes) {
     EXPECT_EQ(count(lang::RejectionKind::kRelativePosition) > 0, naive);
     EXPECT_EQ(count(lang::RejectionKind::kContainment) > 0, naive);
   }
+}
+
+// As in the paper's tool, naive mode checks relative-position specifiers before containment
+// ones: a scene breaking both counts as relative position, whichever specifier is written first.
+TEST(ExamplesTest, NaiveModeCountsRelativePositionBeforeContainment) {
+  std::map<lang::RejectionKind, int64_t> by_order[2];
+  const char* specifiers[2] = {"completely on t, left of t", "left of t, completely on t"};
+  for (int order = 0; order < 2; ++order) {
+    auto program = CompileOrDie(std::string("from model import *\nt = Table on floor\n"
+                                            "c = Tray ") + specifiers[order] + "\n");
+    ASSERT_NE(program, nullptr);
+    SceneSampler sampler(*program, NaiveOptions());
+    for (uint64_t i = 0; i < 300; ++i) {
+      for (const auto& [kind, n] : sampler.Sample(5, i).rejections.by_kind) by_order[order][kind] += n;
+    }
+  }
+  EXPECT_EQ(by_order[0], by_order[1]);
+  EXPECT_GT(by_order[0][lang::RejectionKind::kRelativePosition], 0);
+  EXPECT_GT(by_order[0][lang::RejectionKind::kContainment], 0);
 }
 
 // The hand-written naive file and Figure 1 with the same objects give the same scenes in law.
