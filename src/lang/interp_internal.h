@@ -170,6 +170,7 @@ class Interpreter {
   // relative-position constraints first, which is what its Table II's split (108 relative
   // position against 6 containment per scene) shows (docs/benchmarks.md).
   void NoteNaiveViolation(Rejection violation);
+  bool KeepsNaiveViolation(RejectionKind kind) const;  // would NoteNaiveViolation keep it?
   Eigen::Vector3d SampleRegion(const std::vector<PositionConstraint>& constraints,
                                const geometry::ConvexRegion& region,
                                const geometry::ConvexRegion* workspace, int index, SourceSpan span);

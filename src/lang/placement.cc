@@ -393,23 +393,26 @@ Vector3d Interpreter::SampleNaive(const std::vector<PositionConstraint>& constra
     p = geometry::RegionSampler(domain).Sample(rng());
   }
   for (const PositionConstraint& c : constraints) {
-    if (c.is_point || c.region.Contains(p, 1e-9)) continue;
-    NoteNaiveViolation(Rejection{
-        IsRelativeSpecifier(c.specifier->kind) ? RejectionKind::kRelativePosition
-                                               : RejectionKind::kContainment,
-        scene_.objects[index].DisplayName(index) + " " +
-            DescribeSpecifier(*c.specifier, program_.sources),
-        c.specifier->span, ""});
+    if (c.is_point) continue;
+    const RejectionKind kind = IsRelativeSpecifier(c.specifier->kind)
+                                   ? RejectionKind::kRelativePosition
+                                   : RejectionKind::kContainment;
+    if (!KeepsNaiveViolation(kind) || c.region.Contains(p, 1e-9)) continue;
+    NoteNaiveViolation(Rejection{kind,
+                                 scene_.objects[index].DisplayName(index) + " " +
+                                     DescribeSpecifier(*c.specifier, program_.sources),
+                                 c.specifier->span, ""});
   }
   return p;
 }
 
+bool Interpreter::KeepsNaiveViolation(RejectionKind kind) const {
+  return !naive_violation_ || (naive_violation_->kind == RejectionKind::kContainment &&
+                               kind == RejectionKind::kRelativePosition);
+}
+
 void Interpreter::NoteNaiveViolation(Rejection violation) {
-  const bool first = !naive_violation_;
-  const bool relative_before_containment =
-      naive_violation_ && naive_violation_->kind == RejectionKind::kContainment &&
-      violation.kind == RejectionKind::kRelativePosition;
-  if (first || relative_before_containment) naive_violation_ = std::move(violation);
+  if (KeepsNaiveViolation(violation.kind)) naive_violation_ = std::move(violation);
 }
 
 }  // namespace prs::lang::internal

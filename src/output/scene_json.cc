@@ -36,10 +36,15 @@ void AppendNumber(double x, Out& out) {
     out += ".0";
     return;
   }
-  const size_t begin = out.size();
   char digits[32];  // fmt's shortest form, compiled: no format-string parsing per number
-  out.append(digits, fmt::format_to(digits, FMT_COMPILE("{}"), x));
-  if (out.find_first_of(".e", begin) == std::string::npos) out += ".0";
+  char* end = fmt::format_to(digits, FMT_COMPILE("{}"), x);
+  out.append(digits, end);
+  // A number with a fractional part always shows a '.' or an exponent; only a whole number
+  // too large for the branch above may lack both.
+  if (x == std::trunc(x) && std::string_view(digits, end - digits).find_first_of(".e") ==
+                                std::string_view::npos) {
+    out += ".0";
+  }
 }
 
 bool IsPlainAscii(std::string_view s) {
@@ -122,10 +127,37 @@ void AppendProperties(const lang::SceneObject& o, Out& out) {
   out += '}';
 }
 
+// `"quaternion":[...],"yaw_pitch_roll":[...]` for the orientation R_WO.
+void AppendOrientation(const Eigen::Quaterniond& R_WO, Out& out) {
+  const Eigen::Matrix3d R = R_WO.toRotationMatrix();
+  const Eigen::Quaterniond q = geometry::CanonicalQuaternion(R);
+  const Eigen::Vector3d ypr = geometry::CalcYawPitchRoll(R);
+  out += "\"quaternion\":";
+  AppendNumbers({q.w(), q.x(), q.y(), q.z()}, out);
+  out += ",\"yaw_pitch_roll\":";
+  AppendNumbers({ypr.x(), ypr.y(), ypr.z()}, out);
+}
+
+// Most objects keep the world's axes: their orientation's text is made once, by the same code.
+bool IsExactIdentity(const Eigen::Quaterniond& q) {
+  return q.w() == 1 && q.x() == 0 && q.y() == 0 && q.z() == 0 && !std::signbit(q.x()) &&
+         !std::signbit(q.y()) && !std::signbit(q.z());
+}
+
+void AppendObjectOrientation(const Eigen::Quaterniond& R_WO, Out& out) {
+  static const std::string kIdentity = [] {
+    std::string text;
+    AppendOrientation(Eigen::Quaterniond::Identity(), text);
+    return text;
+  }();
+  if (IsExactIdentity(R_WO)) {
+    out += kIdentity;
+  } else {
+    AppendOrientation(R_WO, out);
+  }
+}
+
 void AppendObject(const lang::SceneObject& o, Out& out) {
-  const Eigen::Matrix3d R_WO = o.R_WO.toRotationMatrix();
-  const Eigen::Quaterniond q = geometry::CanonicalQuaternion(R_WO);
-  const Eigen::Vector3d ypr = geometry::CalcYawPitchRoll(R_WO);
   out += "{\"name\":";
   if (o.name) {
     AppendString(*o.name, out);
@@ -136,10 +168,8 @@ void AppendObject(const lang::SceneObject& o, Out& out) {
   AppendString(o.cls->name, out);
   out += ",\"position\":";
   AppendNumbers({o.p_WO.x(), o.p_WO.y(), o.p_WO.z()}, out);
-  out += ",\"orientation\":{\"quaternion\":";
-  AppendNumbers({q.w(), q.x(), q.y(), q.z()}, out);
-  out += ",\"yaw_pitch_roll\":";
-  AppendNumbers({ypr.x(), ypr.y(), ypr.z()}, out);
+  out += ",\"orientation\":{";
+  AppendObjectOrientation(o.R_WO, out);
   out += "},\"dimensions\":";
   AppendNumbers({o.dimensions.x(), o.dimensions.y(), o.dimensions.z()}, out);
   out += ",\"properties\":";

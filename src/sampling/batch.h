@@ -34,14 +34,14 @@ struct BatchScene {
 struct BatchCallbacks {
   /// Optional. Runs on a worker thread right after a scene is sampled, in no particular
   /// order: per-scene work that should run in parallel (e.g. formatting it as JSON).
-  std::function<void(BatchScene&)> prepare;
+  std::function<void(BatchScene&)> prepare = {};
   /// Runs on the calling thread, once per scene, in index order. Optional (a batch run only
   /// for its summary).
-  std::function<void(BatchScene&&)> consume;
+  std::function<void(BatchScene&&)> consume = {};
   /// Optional. Runs on the calling thread about every 50 ms while it waits for the next scene
   /// (e.g. to redraw progress while one scene takes many attempts). When given, scenes are
   /// sampled on worker threads even for threads == 1, so the calling thread stays free.
-  std::function<void()> tick;
+  std::function<void()> tick = {};
 };
 
 /// Totals over the scenes handed to `consume`.

@@ -44,9 +44,9 @@ struct TableCubeController::Episode {
   World world;
   render::ModelRenderer* renderer = nullptr;
   int camera_id = -1;
-  std::string cube;  // the cube's body name, for the classification only
+  std::string cube = {};  // the cube's body name, for the classification only
   double last_sighting_error_m = 0;
-  std::vector<std::pair<std::string, double>> metrics;
+  std::vector<std::pair<std::string, double>> metrics = {};
 
   Eigen::Vector3d TrueCubePosition() const {
     return Eigen::Map<const Eigen::Vector3d>(world.data->xpos + 3 * world.body(cube));
