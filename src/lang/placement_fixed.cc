@@ -5,6 +5,8 @@
 // changes no scene's weight, only the number of rejected attempts. The pieces are built once
 // per thread and cached (RunCache); building or reusing them consumes the same random draws.
 // Objects that are wholly fixed (ObjectPlan::object_fixed) are likewise built once and copied.
+#include <atomic>
+
 #include "geometry/difference.h"
 #include "lang/interp_internal.h"
 
@@ -128,10 +130,13 @@ const SceneObject* Interpreter::CachedFixedObject(const ObjectPlan& plan) const 
 void Interpreter::StoreFixedObject(const ObjectPlan& plan, int index, int64_t draws_before) {
   if (!plan.object_fixed || !options_.cache || options_.mode != SamplingMode::kRegion) return;
   if (draws_ != draws_before || index + 1 != static_cast<int>(scene_.objects.size())) return;
-  const SceneObject& object = scene_.objects[index];
+  SceneObject& object = scene_.objects[index];
   for (const auto& [name, value] : object.properties) {
     if (!IsSameInEveryScene(value)) return;
   }
+  // A counter, not random state: ids only tell copies of one kept object apart from others.
+  static std::atomic<uint64_t> next_fixed_id{1};
+  object.fixed_id = next_fixed_id.fetch_add(1, std::memory_order_relaxed);
   options_.cache->fixed_objects.emplace(&plan, object);
 }
 

@@ -25,6 +25,10 @@ struct SceneObject {
   Eigen::Vector3d dimensions = Eigen::Vector3d::Zero();  // width, length, height (0 for points)
   bool allow_collisions = false;
   bool fixed = false;  // the same in every scene (ObjectPlan::object_fixed)
+  /// Nonzero for an object a sampler keeps and copies unchanged into later scenes (RunCache::
+  /// fixed_objects): objects with the same id are equal in every field, so what is made from
+  /// one (its JSON text) serves them all. Ids are never reused within a process.
+  uint64_t fixed_id = 0;
   /// Every property in definition order, position and orientation included.
   std::vector<std::pair<std::string, Value>> properties;
 

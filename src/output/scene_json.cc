@@ -10,6 +10,7 @@
 #include <charconv>
 #include <cmath>
 #include <cstdint>
+#include <unordered_map>
 #include <nlohmann/json.hpp>
 
 #include "geometry/rotation.h"
@@ -157,7 +158,7 @@ void AppendObjectOrientation(const Eigen::Quaterniond& R_WO, Out& out) {
   }
 }
 
-void AppendObject(const lang::SceneObject& o, Out& out) {
+void AppendObjectText(const lang::SceneObject& o, Out& out) {
   out += "{\"name\":";
   if (o.name) {
     AppendString(*o.name, out);
@@ -175,6 +176,23 @@ void AppendObject(const lang::SceneObject& o, Out& out) {
   out += ",\"properties\":";
   AppendProperties(o, out);
   out += '}';
+}
+
+// An object a sampler copies unchanged into every scene (SceneObject::fixed_id) has the same
+// text every time: it is made once per thread. At most kMaxKept texts are kept (a process that
+// makes many samplers starts over).
+void AppendObject(const lang::SceneObject& o, Out& out) {
+  if (o.fixed_id == 0) return AppendObjectText(o, out);
+  constexpr size_t kMaxKept = 4096;
+  thread_local std::unordered_map<uint64_t, std::string> texts;
+  auto it = texts.find(o.fixed_id);
+  if (it == texts.end()) {
+    if (texts.size() >= kMaxKept) texts.clear();
+    std::string text;
+    AppendObjectText(o, text);
+    it = texts.emplace(o.fixed_id, std::move(text)).first;
+  }
+  out += it->second;
 }
 
 void AppendHeader(const sampling::SampledScene& sampled, Out& out) {

@@ -8,6 +8,9 @@
 #include <limits>
 #include <nlohmann/json.hpp>
 
+#include "lang/lang.h"
+#include "sampling/sampler.h"
+
 namespace prs::output {
 namespace {
 
@@ -73,6 +76,42 @@ TEST(SceneJsonTest, NumbersRoundTripExactly) {
   EXPECT_EQ(scene["objects"][0]["position"][0].get<double>(), 0.1 + 0.2);
   EXPECT_EQ(scene["objects"][0]["position"][1].get<double>(), 1e-300);
   EXPECT_TRUE(std::signbit(scene["objects"][0]["position"][2].get<double>()));
+}
+
+// Objects a sampler copies into every scene are written from text made once per thread
+// (SceneObject::fixed_id): the lines must be those written field by field, also with two
+// programs of the same layout but different properties sampled in turn on one thread.
+TEST(SceneJsonTest, KeptObjectsAreWrittenAsTheirFieldsSay) {
+  auto compile = [](const std::string& color) {
+    lang::DiagnosticEngine diagnostics;
+    auto program = lang::CompileText("kept.prs",
+                                     "class Box:\n    width: 0.5\n    length: 0.5\n"
+                                     "    height: 0.5\n    color: \"" + color + "\"\n"
+                                     "t = Box at V3D(0, 0, 0.25)\n"
+                                     "c = Box at V3D((2, 3), 0.1, 0.25)\n",
+                                     {}, diagnostics);
+    EXPECT_FALSE(diagnostics.has_errors());
+    return program;
+  };
+  auto red = compile("red"), blue = compile("blue");
+  sampling::SceneSampler red_sampler(*red), blue_sampler(*blue);
+  int kept = 0;
+  for (uint64_t i = 0; i < 20; ++i) {
+    for (sampling::SceneSampler* sampler : {&red_sampler, &blue_sampler}) {
+      const sampling::SampledScene sampled = sampler->Sample(1, i);
+      sampling::SampledScene plain = sampled;
+      for (lang::SceneObject& o : plain.scene.objects) {
+        kept += o.fixed_id != 0;
+        o.fixed_id = 0;
+      }
+      EXPECT_EQ(FormatSceneJson(sampled), FormatSceneJson(plain));
+    }
+  }
+  EXPECT_GE(kept, 38);  // the table of every scene after each sampler's first
+  const json red_scene = json::parse(FormatSceneJson(red_sampler.Sample(1, 99)));
+  const json blue_scene = json::parse(FormatSceneJson(blue_sampler.Sample(1, 99)));
+  EXPECT_EQ(red_scene["objects"][0]["properties"]["color"], "red");
+  EXPECT_EQ(blue_scene["objects"][0]["properties"]["color"], "blue");
 }
 
 }  // namespace
