@@ -165,12 +165,11 @@ class Interpreter {
   RoundCore CalcRoundCore(int index, ObjectPlan::OpenTurn open);
   // Once the orientation is known: the exact tests the position was drawn without.
   void CheckOpenTurn(int index);
-  // Naive mode: keeps VIOLATION as the scene's rejection unless one is kept already. A
-  // relative-position violation replaces a containment one: the paper's tool checked the
-  // relative-position constraints first, which is what its Table II's split (108 relative
-  // position against 6 containment per scene) shows (docs/benchmarks.md).
-  void NoteNaiveViolation(Rejection violation);
-  bool KeepsNaiveViolation(RejectionKind kind) const;  // would NoteNaiveViolation keep it?
+  // Naive mode: whether a violation of KIND becomes the scene's rejection (naive_violation_).
+  // Only when none is kept yet, or a relative-position one replaces a containment one: the
+  // paper's tool checked the relative-position constraints first, which is what its Table II's
+  // split (108 relative position against 6 containment per scene) shows (docs/benchmarks.md).
+  bool KeepsNaiveViolation(RejectionKind kind) const;
   Eigen::Vector3d SampleRegion(const std::vector<PositionConstraint>& constraints,
                                const geometry::ConvexRegion& region,
                                const geometry::ConvexRegion* workspace, int index, SourceSpan span);
@@ -225,7 +224,7 @@ class Interpreter {
   int64_t draws_ = 0;
   // Naive mode: the specifier that rejects the scene. As in the paper's tool, specifiers are
   // checked as constraints once the scene is complete, after collisions and the workspace, and
-  // relative-position ones before containment ones (NoteNaiveViolation).
+  // relative-position ones before containment ones (KeepsNaiveViolation).
   std::optional<Rejection> naive_violation_;
   std::vector<OpenTurnCheck> open_turn_checks_;  // see ObjectPlan::open_turn
   Value return_value_;

@@ -284,20 +284,22 @@ void Interpreter::CheckOpenTurn(int index) {
   const geometry::OrientedBox box = BoxOf(index);
   for (const OpenTurnCheck& check : open_turn_checks_) {
     if (check.index != index) continue;
+    const RejectionKind kind = IsSideSpecifier(check.specifier->kind)
+                                   ? RejectionKind::kRelativePosition
+                                   : RejectionKind::kContainment;
+    const bool naive = options_.mode == SamplingMode::kNaive;
+    if (naive && !KeepsNaiveViolation(kind)) continue;  // another violation already counts
     if (geometry::ErodeByBox(check.box_region, box.R_WB, box.half_extents)
             .Contains(box.p_center, 1e-9)) {
       continue;
     }
-    const RejectionKind kind = IsSideSpecifier(check.specifier->kind)
-                                   ? RejectionKind::kRelativePosition
-                                   : RejectionKind::kContainment;
     std::string culprit = scene_.objects[index].DisplayName(index) + " " +
                           DescribeSpecifier(*check.specifier, program_.sources);
     const std::string detail = "with the orientation it turned to, " + DescribeBox(index) +
                                " does not fit " +
                                DescribeSpecifier(*check.specifier, program_.sources);
-    if (options_.mode == SamplingMode::kNaive) {
-      NoteNaiveViolation(Rejection{kind, std::move(culprit), check.specifier->span, detail});
+    if (naive) {
+      naive_violation_ = Rejection{kind, std::move(culprit), check.specifier->span, detail};
       continue;
     }
     open_turn_checks_.clear();
@@ -398,10 +400,10 @@ Vector3d Interpreter::SampleNaive(const std::vector<PositionConstraint>& constra
                                    ? RejectionKind::kRelativePosition
                                    : RejectionKind::kContainment;
     if (!KeepsNaiveViolation(kind) || c.region.Contains(p, 1e-9)) continue;
-    NoteNaiveViolation(Rejection{kind,
+    naive_violation_ = Rejection{kind,
                                  scene_.objects[index].DisplayName(index) + " " +
                                      DescribeSpecifier(*c.specifier, program_.sources),
-                                 c.specifier->span, ""});
+                                 c.specifier->span, ""};
   }
   return p;
 }
@@ -409,10 +411,6 @@ Vector3d Interpreter::SampleNaive(const std::vector<PositionConstraint>& constra
 bool Interpreter::KeepsNaiveViolation(RejectionKind kind) const {
   return !naive_violation_ || (naive_violation_->kind == RejectionKind::kContainment &&
                                kind == RejectionKind::kRelativePosition);
-}
-
-void Interpreter::NoteNaiveViolation(Rejection violation) {
-  if (KeepsNaiveViolation(violation.kind)) naive_violation_ = std::move(violation);
 }
 
 }  // namespace prs::lang::internal
