@@ -15,6 +15,7 @@ packages=(
   build-essential cmake ninja-build pkg-config git
   ccache                 # compiler cache: rebuilds and fresh clones reuse earlier objects
   libeigen3-dev          # linear algebra for the geometry core
+  libboost-dev           # Boost.Random's Sobol' engine and Boost.Math's normal quantile (headers)
   libfmt-dev             # string formatting in diagnostics and output
   libcli11-dev           # the prs command line
   nlohmann-json3-dev     # scene JSON output and parsing

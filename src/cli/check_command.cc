@@ -11,6 +11,7 @@
 #include "cli/commands.h"
 #include "cli/common.h"
 #include "cli/interrupt.h"
+#include "cli/search_report.h"
 #include "sampling/batch.h"
 
 namespace prs::cli {
@@ -20,7 +21,26 @@ struct CheckArgs {
   ScenarioArgs scenario;
   SamplingArgs sampling;
   int64_t count = 20;  // scenes sampled to see which properties vary
+  bool coordinates = false;
 };
+
+// `prs check --coordinates`: only the list of scene coordinates.
+int ListCoordinates(const lang::CompiledProgram& program, const CheckArgs& args) {
+  try {
+    const std::vector<lang::CoordinateInfo> coordinates =
+        sampling::DescribeCoordinates(program, MakeSampleOptions(args.sampling));
+    if (coordinates.empty()) {
+      std::cout << args.scenario.file << ": no scene coordinates (nothing is drawn at random)\n";
+      return kExitSuccess;
+    }
+    std::cout << args.scenario.file << ": " << FormatCount(coordinates.size(), "scene coordinate")
+              << " (docs/search.md)\n"
+              << FormatCoordinateTable(coordinates, program.sources) << std::flush;
+    return kExitSuccess;
+  } catch (const lang::ScenarioError& error) {
+    return ReportScenarioError(error, program.sources);
+  }
+}
 
 VariationObserver ObserveScenes(const lang::CompiledProgram& program, const CheckArgs& args,
                                 const std::atomic<bool>& cancel) {
@@ -67,6 +87,7 @@ std::string Verdict(const CheckArgs& args, const Observation& o) {
 int RunCheck(const CheckArgs& args) {
   auto program = CompileScenario(args.scenario);
   if (!program) return kExitScenarioError;
+  if (args.coordinates) return ListCoordinates(*program, args);
   const ScenarioOutline outline = OutlineScenario(*program);
   const Observation o = Observe(*program, args);
   std::cout << FormatCheckHeader(args.scenario.file, Verdict(args, o), *program, outline)
@@ -98,6 +119,8 @@ CommandRunner ConfigureCheckCommand(CLI::App& command) {
       ->check(IntegerAtLeast(0))
       ->capture_default_str();
   AddSamplingOptions(command, args->sampling);
+  command.add_flag("--coordinates", args->coordinates,
+                   "list the scene coordinates (what each random draw decides; docs/search.md)");
   return [args] { return RunCheck(*args); };
 }
 

@@ -29,5 +29,6 @@ CommandRunner ConfigureViewCommand(CLI::App& command);
 CommandRunner ConfigureExportCommand(CLI::App& command);
 CommandRunner ConfigureRenderCommand(CLI::App& command);
 CommandRunner ConfigureTestCommand(CLI::App& command);
+CommandRunner ConfigureSearchCommand(CLI::App& command);
 
 }  // namespace prs::cli

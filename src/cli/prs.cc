@@ -23,6 +23,7 @@ const std::vector<Command>& CommandTable() {
       {"export", "write scenes as MJCF, URDF, SDF, USD or glTF files", ConfigureExportCommand},
       {"render", "draw scenes as PNG pictures (offscreen, no display needed)", ConfigureRenderCommand},
       {"test", "run a controller in sampled scenes, tabulate outcomes", ConfigureTestCommand},
+      {"search", "search for scenes where a controller fails (ce, anneal)", ConfigureSearchCommand},
   };
   return kCommands;
 }

@@ -8,6 +8,7 @@
 
 #include "cli/commands.h"
 #include "cli/common.h"
+#include "cli/design_option.h"
 #include "cli/interrupt.h"
 #include "cli/progress.h"
 #include "output/line_writer.h"
@@ -20,6 +21,7 @@ namespace {
 struct SampleArgs {
   ScenarioArgs scenario;
   SamplingArgs sampling;
+  DesignArgs design;
   SceneRangeArgs range;
   std::string output;  // empty or "-": stdout
   bool quiet = false;
@@ -66,6 +68,9 @@ class SceneWriterRun {
     const auto begin = std::chrono::steady_clock::now();
     try {
       sampling::BatchOptions options = MakeBatchOptions();
+      if (!PrepareDesign(args_.design, program_, args_.range, options.sample, &design_)) {
+        return kExitUsage;
+      }
       sampling::BatchCallbacks callbacks = MakeCallbacks();
       progress_.Attach(options, callbacks);
       const sampling::BatchSummary summary = sampling::SampleBatch(program_, options, callbacks);
@@ -161,6 +166,7 @@ class SceneWriterRun {
   InterruptWatch interrupt_;
   ProgressBar progress_;
   int64_t done_ = 0;
+  std::unique_ptr<search::Design> design_;
 };
 
 int RunSample(const SampleArgs& args) {
@@ -196,6 +202,7 @@ CommandRunner ConfigureSampleCommand(CLI::App& command) {
       ->type_name("OUT")
       ->check(NonEmptyPath());
   AddSamplingOptions(command, args->sampling);
+  AddDesignOption(command, args->design);
   command.add_flag("-q,--quiet", args->quiet, "no summary on stderr");
   return [args] { return RunSample(*args); };
 }

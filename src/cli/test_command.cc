@@ -9,16 +9,14 @@
 #include <memory>
 #include <optional>
 
-#include "cli/builtin_controllers.h"
 #include "cli/commands.h"
 #include "cli/common.h"
+#include "cli/controller_options.h"
+#include "cli/design_option.h"
 #include "cli/failure_pictures.h"
 #include "cli/interrupt.h"
 #include "cli/progress.h"
-#include "cli/text_table.h"
-#include "harness/exec_controller.h"
 #include "harness/harness.h"
-#include "harness/registry.h"
 #include "output/line_writer.h"
 
 namespace prs::cli {
@@ -27,55 +25,13 @@ namespace {
 struct TestArgs {
   ScenarioArgs scenario;
   SamplingArgs sampling;
-  std::string controller;
-  std::string exec;
+  ControllerArgs controller;
+  DesignArgs design;
   SceneRangeArgs range{.count = 100, .start = 0};
   std::string output;  // empty: no records written
-  double timeout_s = 60;
   std::string save_failures_dir;
   bool quiet = false;
 };
-
-std::string ListControllerNames() {
-  std::string names;
-  for (const harness::ControllerInfo& info : harness::ListControllers()) {
-    names += (names.empty() ? "" : ", ") + info.name;
-  }
-  return names;
-}
-
-// The factory for --controller NAME or --exec CMD; nullopt after printing a usage error.
-std::optional<harness::ControllerFactory> ChooseController(const TestArgs& args,
-                                                           const std::atomic<bool>& cancel) {
-  if (args.controller.empty() && args.exec.empty()) {
-    PrintError("no controller: give --controller NAME (built in: " + ListControllerNames() +
-               ") or --exec CMD");
-    return std::nullopt;
-  }
-  if (!args.exec.empty()) {
-    const harness::ExecOptions options{args.exec, args.timeout_s, &cancel};
-    return [options] { return std::make_unique<harness::ExecController>(options); };
-  }
-  if (const harness::ControllerInfo* info = harness::FindController(args.controller)) {
-    return info->factory;
-  }
-  std::vector<std::string> names;
-  for (const harness::ControllerInfo& info : harness::ListControllers()) names.push_back(info.name);
-  const std::string suggestion = lang::SuggestClosest(args.controller, names);
-  PrintError("--controller: unknown controller '" + args.controller + "'" +
-             (suggestion.empty() ? "" : "; did you mean '" + suggestion + "'?") +
-             " (controllers: " + ListControllerNames() + ")");
-  return std::nullopt;
-}
-
-// What `prs sample` needs to rewrite one of these scenes.
-std::vector<std::string> MakeScenarioArgs(const TestArgs& args) {
-  std::vector<std::string> words = {args.scenario.file};
-  for (const std::string& dir : args.scenario.include_dirs) words.insert(words.end(), {"-I", dir});
-  for (const std::string& param : args.scenario.params) words.insert(words.end(), {"-p", param});
-  if (args.sampling.naive) words.push_back("--naive");
-  return words;
-}
 
 harness::RunOptions MakeRunOptions(const TestArgs& args, const std::atomic<bool>& cancel) {
   harness::RunOptions options;
@@ -84,22 +40,12 @@ harness::RunOptions MakeRunOptions(const TestArgs& args, const std::atomic<bool>
   options.start = args.range.start;
   options.count = args.range.count;
   options.threads = args.sampling.threads;
-  options.scenario_args = MakeScenarioArgs(args);
+  options.scenario_args = MakeScenarioWords(args.scenario, args.sampling);
   options.save_failures_dir = args.save_failures_dir;
   // Pictures are drawn after the run from the saved JSON (failure_pictures.h), so no
   // FailureHook is needed here.
   options.cancel = &cancel;
   return options;
-}
-
-// outcome / count / share, with a total row.
-std::string FormatOutcomeTable(const std::vector<harness::EpisodeRecord>& records) {
-  TextTable table({"outcome", "count", "share"}, "lrr");
-  for (const harness::OutcomeRow& row : harness::TabulateOutcomes(records)) {
-    table.AddRow({row.outcome, std::to_string(row.count), fmt::format("{:.1f}%", 100 * row.share)});
-  }
-  table.AddRow({"total", std::to_string(records.size()), records.empty() ? "" : "100.0%"});
-  return table.Format(0);
 }
 
 // "10 episodes, 7 successes, 3 failures; 0.05 s, 12000 episodes/min on 2 threads"
@@ -145,6 +91,7 @@ int ReportSavedFailures(const harness::RunSummary& summary, const TestArgs& args
 int RunAndReport(const lang::CompiledProgram& program, const harness::ControllerFactory& factory,
                  const TestArgs& args, output::LineWriter* records, InterruptWatch& interrupt) {
   harness::RunOptions options = MakeRunOptions(args, interrupt.flag());
+  std::unique_ptr<search::Design> design;
   ProgressBar progress(args.range.count, !args.quiet && IsStderrTerminal());
   int64_t done = 0;
   options.on_record = [&](const harness::EpisodeRecord& record) {
@@ -153,6 +100,7 @@ int RunAndReport(const lang::CompiledProgram& program, const harness::Controller
   };
   const auto begin = std::chrono::steady_clock::now();
   try {
+    if (!PrepareDesign(args.design, program, args.range, options.sample, &design)) return kExitUsage;
     const harness::RunSummary summary = harness::RunEpisodes(program, factory, options);
     if (records) records->Commit();
     progress.Erase();
@@ -184,7 +132,7 @@ int RunAndReport(const lang::CompiledProgram& program, const harness::Controller
 int RunTest(const TestArgs& args) {
   if (!CheckSceneRange(args.range)) return kExitUsage;
   InterruptWatch interrupt;
-  const auto factory = ChooseController(args, interrupt.flag());
+  const auto factory = ChooseController(args.controller, interrupt.flag());
   if (!factory) return kExitUsage;
   auto program = CompileScenario(args.scenario);
   if (!program) return kExitScenarioError;
@@ -200,51 +148,23 @@ int RunTest(const TestArgs& args) {
   return RunAndReport(*program, *factory, args, records.get(), interrupt);
 }
 
-CLI::Validator PositiveSeconds() {
-  return CLI::Validator(
-      [](std::string& text) -> std::string {
-        size_t used = 0;
-        double value = 0;
-        try {
-          value = std::stod(text, &used);
-        } catch (const std::exception&) {
-          used = 0;
-        }
-        if (used == text.size() && value > 0 && value < 1e6) return "";
-        return "expects a number of seconds above 0 (and below 10^6), got '" + text + "'";
-      },
-      "");
-}
-
 }  // namespace
 
 CommandRunner ConfigureTestCommand(CLI::App& command) {
-  RegisterBuiltInControllers();
   auto args = std::make_shared<TestArgs>();
   AddScenarioOptions(command, args->scenario);
-  CLI::Option* controller = command
-                                .add_option("--controller", args->controller,
-                                            "a built-in controller (" + ListControllerNames() + ")")
-                                ->type_name("NAME");
-  command
-      .add_option("--exec", args->exec,
-                  "your own controller: a shell command run once per scene (docs/harness.md)")
-      ->type_name("CMD")
-      ->excludes(controller);
+  AddControllerOptions(command, args->controller);
   AddSceneRangeOptions(command, args->range, 0);
   command.add_option("-o,--output", args->output, "write one JSON record per episode to OUT")
       ->type_name("OUT")
       ->check(NonEmptyPath());
-  command.add_option("--timeout", args->timeout_s, "seconds an --exec episode may take")
-      ->type_name("S")
-      ->check(PositiveSeconds())
-      ->capture_default_str();
   command
       .add_option("--save-failures", args->save_failures_dir,
                   "write each failing scene to DIR/seed-S-index-I.json")
       ->type_name("DIR")
       ->check(NonEmptyPath());
   AddSamplingOptions(command, args->sampling);
+  AddDesignOption(command, args->design);
   command.add_flag("-q,--quiet", args->quiet, "no summary on stderr");
   return [args] { return RunTest(*args); };
 }

@@ -1,9 +1,12 @@
 // Implementation of the deterministic xoshiro256** generator and its distributions.
 #include "geometry/random.h"
 
+#include <algorithm>
 #include <cmath>
 #include <sstream>
 #include <stdexcept>
+
+#include <boost/math/special_functions/erf.hpp>
 
 namespace prs::geometry {
 namespace {
@@ -56,23 +59,78 @@ uint64_t Rng::NextU64() {
 
 double Rng::Uniform01() { return static_cast<double>(NextU64() >> 11) * 0x1.0p-53; }
 
-double Rng::Uniform(double lo, double hi) {
+namespace {
+
+void CheckUniformBounds(double lo, double hi) {
   if (!(lo <= hi) || !std::isfinite(lo) || !std::isfinite(hi)) {
     std::ostringstream msg;
     msg << "Rng::Uniform: need finite lo <= hi, got lo=" << lo << " hi=" << hi;
     throw std::invalid_argument(msg.str());
   }
-  const double x = lo + (hi - lo) * Uniform01();
-  // Rounding can land exactly on hi; keep the interval half-open.
-  return (x >= hi && hi > lo) ? std::nextafter(hi, lo) : x;
 }
 
-int64_t Rng::UniformInt(int64_t lo, int64_t hi) {
+void CheckIntBounds(int64_t lo, int64_t hi) {
   if (lo > hi) {
     std::ostringstream msg;
     msg << "Rng::UniformInt: need lo <= hi, got lo=" << lo << " hi=" << hi;
     throw std::invalid_argument(msg.str());
   }
+}
+
+// The standard normal's upper-tail probability Q(z) = P(Z > z), accurate far out in the tail.
+double CalcUpperTail(double z) { return 0.5 * std::erfc(z / std::sqrt(2.0)); }
+
+// The z with Q(z) = q, for q in (0, 1).
+double CalcUpperTailQuantile(double q) {
+  return std::sqrt(2.0) * boost::math::erfc_inv(2.0 * q);
+}
+
+}  // namespace
+
+double MapUniform(double u, double lo, double hi) {
+  CheckUniformBounds(lo, hi);
+  const double x = lo + (hi - lo) * u;
+  // Rounding can land exactly on hi; keep the interval half-open.
+  return (x >= hi && hi > lo) ? std::nextafter(hi, lo) : x;
+}
+
+int64_t MapUniformInt(double u, int64_t lo, int64_t hi) {
+  CheckIntBounds(lo, hi);
+  const double n = static_cast<double>(static_cast<uint64_t>(hi) - static_cast<uint64_t>(lo)) + 1.0;
+  const double k = std::min(std::floor(u * n), n - 1.0);
+  return static_cast<int64_t>(static_cast<uint64_t>(lo) + static_cast<uint64_t>(std::max(0.0, k)));
+}
+
+double MapNormal(double u) {
+  const double p = std::clamp(u, 0x1.0p-54, 1.0 - 0x1.0p-54);
+  return -CalcUpperTailQuantile(p);  // Q(-z) = 1 - Q(z) = p
+}
+
+double MapTruncatedNormal(double u, double mean, double std, double lo, double hi) {
+  double a = (lo - mean) / std, b = (hi - mean) / std;
+  // Work in the upper tail, where Q keeps its precision: mirror when the interval lies below.
+  const bool mirror = a + b < 0;
+  if (mirror) {
+    const double t = -a;
+    a = -b;
+    b = t;
+  }
+  const double q_a = CalcUpperTail(a), q_b = CalcUpperTail(b);  // q_a > q_b
+  if (!(q_a > q_b) || !(q_a > 0)) return NAN;
+  const double q = std::clamp(q_a - u * (q_a - q_b), std::min(q_b, q_a), q_a);
+  if (!(q > 0) || !(q < 1)) return NAN;
+  const double z = std::clamp(CalcUpperTailQuantile(q), a, b);
+  const double x = mean + std * (mirror ? -z : z);
+  return std::clamp(x, lo, hi);
+}
+
+double Rng::Uniform(double lo, double hi) {
+  CheckUniformBounds(lo, hi);
+  return MapUniform(Uniform01(), lo, hi);
+}
+
+int64_t Rng::UniformInt(int64_t lo, int64_t hi) {
+  CheckIntBounds(lo, hi);
   const uint64_t range = static_cast<uint64_t>(hi) - static_cast<uint64_t>(lo);
   if (range == std::numeric_limits<uint64_t>::max()) return static_cast<int64_t>(NextU64());
   const uint64_t n = range + 1;

@@ -34,8 +34,16 @@ Eigen::Vector3d SampleTriangle(const Eigen::Vector3d* v, Rng& rng) {
   return v[0] + s * (v[1] - v[0]) + t * (v[2] - v[0]);
 }
 
+// Three given numbers of [0, 1), read in order like an Rng's Uniform01.
+struct FixedCoordinates {
+  double values[3];
+  int next = 0;
+  double Uniform01() { return values[next++]; }
+};
+
 // A uniform point of a tetrahedron by folding the unit cube (Rocchini & Cignoni 2000).
-Eigen::Vector3d SampleTetrahedron(const Eigen::Vector3d* v, Rng& rng) {
+template <typename Uniforms>
+Eigen::Vector3d SampleTetrahedron(const Eigen::Vector3d* v, Uniforms& rng) {
   double s = rng.Uniform01(), t = rng.Uniform01(), u = rng.Uniform01();
   if (s + t > 1) {  // cut the cube into a triangular prism
     s = 1 - s;
@@ -90,6 +98,7 @@ RegionSampler::RegionSampler(const ConvexRegion& region) {
   }
   dimension_ = c.dimension;
   balls_ = c.balls;
+  if (dimension_ == 2) hull_ = c.hull;
   measure_is_exact_ = c.measure_exact;
   measure_ = c.measure_exact ? c.measure : c.polytope_measure;
   if (dimension_ == 0) {
@@ -161,17 +170,124 @@ Eigen::Vector3d RegionSampler::SamplePolytope(Rng& rng) const {
   }
 }
 
+bool RegionSampler::IsInBalls(const Eigen::Vector3d& p) const {
+  return std::all_of(balls_.begin(), balls_.end(), [&](const Ball& b) {
+    return (p - b.p_center).squaredNorm() <= b.radius * b.radius;
+  });
+}
+
 Eigen::Vector3d RegionSampler::Sample(Rng& rng) const {
   if (balls_.empty()) return SamplePolytope(rng);
   for (int attempt = 0; attempt < kMaxBallRejections; ++attempt) {
     const Eigen::Vector3d p = SamplePolytope(rng);
-    const bool inside = std::all_of(balls_.begin(), balls_.end(), [&](const Ball& b) {
-      return (p - b.p_center).squaredNorm() <= b.radius * b.radius;
-    });
-    if (inside) return p;
+    if (IsInBalls(p)) return p;
   }
   throw std::domain_error("RegionSampler: region too thin to sample (" +
                           std::to_string(kMaxBallRejections) + " points rejected by its balls)");
+}
+
+Eigen::Vector3d RegionSampler::SampleAt(const double* u, Rng& rng) const {
+  const Eigen::Vector3d p = MapPolytope(u);
+  if (balls_.empty() || IsInBalls(p)) return p;
+  return Sample(rng);  // u's candidate was rejected: the next ones are i.i.d. from the stream
+}
+
+Eigen::Vector3d RegionSampler::MapPolytope(const double* u) const {
+  if (dimension_ == 0) return simplex_vertices_[0];
+  if (dimension_ == 2) return MapPolygon(u);
+  const Eigen::Vector3d* v = simplex_vertices_.data();
+  if (dimension_ == 1) return v[0] + u[0] * (v[1] - v[0]);  // one segment
+  const int per = dimension_ + 1;
+  const int n = static_cast<int>(simplex_vertices_.size()) / per;
+  // The simplex whose share of the cumulative measure holds u[0]; the rest of u[0] within
+  // that share is again uniform in [0, 1) and becomes the simplex's first coordinate.
+  double total = 0;
+  for (int i = 0; i < n; ++i) total += CalcSimplexMeasure(dimension_, &simplex_vertices_[i * per]);
+  double target = u[0] * total, residual = u[0];
+  int picked = n - 1;
+  for (int i = 0; i < n; ++i) {
+    const double w = CalcSimplexMeasure(dimension_, &simplex_vertices_[i * per]);
+    if (target < w || i == n - 1) {
+      picked = i;
+      residual = w > 0 ? std::clamp(target / w, 0.0, 1.0) : 0.0;
+      break;
+    }
+    target -= w;
+  }
+  FixedCoordinates fixed{{residual, u[1], u[2]}};
+  return SampleTetrahedron(&simplex_vertices_[picked * per], fixed);
+}
+
+Eigen::Vector3d RegionSampler::MapPolygon(const double* u) const {
+  // The polygon in hull coordinates (x along basis column 0, y along column 1), rebuilt from
+  // the fan: v0, v1, v2 of the first triangle, then the last vertex of each later one.
+  const int n_tri = static_cast<int>(simplex_vertices_.size()) / 3;
+  std::vector<Eigen::Vector2d> poly;
+  poly.reserve(n_tri + 2);
+  auto to_2d = [&](const Eigen::Vector3d& p) -> Eigen::Vector2d {
+    const Eigen::Vector3d d = p - hull_.p_origin;
+    return {hull_.basis.col(0).dot(d), hull_.basis.col(1).dot(d)};
+  };
+  poly.push_back(to_2d(simplex_vertices_[0]));
+  poly.push_back(to_2d(simplex_vertices_[1]));
+  for (int t = 0; t < n_tri; ++t) poly.push_back(to_2d(simplex_vertices_[t * 3 + 2]));
+  // The chord of the polygon at x: [lo, hi] over the edges that cross x.
+  auto chord = [&](double x, double* lo, double* hi) {
+    *lo = INFINITY;
+    *hi = -INFINITY;
+    for (size_t i = 0; i < poly.size(); ++i) {
+      const Eigen::Vector2d& a = poly[i];
+      const Eigen::Vector2d& b = poly[(i + 1) % poly.size()];
+      const double x0 = std::min(a.x(), b.x()), x1 = std::max(a.x(), b.x());
+      if (x < x0 || x > x1) continue;
+      double y0 = a.y(), y1 = a.y();
+      if (x1 > x0) {
+        y0 = y1 = a.y() + (b.y() - a.y()) * (x - a.x()) / (b.x() - a.x());
+      } else {  // an edge along the chord itself
+        y0 = std::min(a.y(), b.y());
+        y1 = std::max(a.y(), b.y());
+      }
+      *lo = std::min(*lo, y0);
+      *hi = std::max(*hi, y1);
+    }
+    if (*lo > *hi) *lo = *hi = 0;  // x outside by rounding: an empty chord
+  };
+  std::vector<double> xs;
+  xs.reserve(poly.size());
+  for (const auto& p : poly) xs.push_back(p.x());
+  std::sort(xs.begin(), xs.end());
+  xs.erase(std::unique(xs.begin(), xs.end()), xs.end());
+  // The chord length is linear between vertex abscissae, so the area left of x is piecewise
+  // quadratic: find u[0]'s slab by whole-slab areas, then solve the slab's quadratic.
+  std::vector<double> length(xs.size());
+  for (size_t k = 0; k < xs.size(); ++k) {
+    double lo = 0, hi = 0;
+    chord(xs[k], &lo, &hi);
+    length[k] = hi - lo;
+  }
+  double total = 0;
+  for (size_t k = 0; k + 1 < xs.size(); ++k) total += 0.5 * (length[k] + length[k + 1]) * (xs[k + 1] - xs[k]);
+  double remaining = u[0] * total;
+  double x = xs.back();
+  for (size_t k = 0; k + 1 < xs.size(); ++k) {
+    const double h = xs[k + 1] - xs[k];
+    const double area = 0.5 * (length[k] + length[k + 1]) * h;
+    if (remaining < area || k + 2 == xs.size()) {
+      // area(t) = L_k t + (L_{k+1} - L_k) t² / (2h) = remaining, in the stable root form.
+      const double a = (length[k + 1] - length[k]) / (2 * h), b = length[k];
+      const double r = std::clamp(remaining, 0.0, area);
+      const double disc = std::max(0.0, b * b + 4 * a * r);
+      const double denom = b + std::sqrt(disc);
+      const double t = denom > 0 ? 2 * r / denom : 0.0;
+      x = xs[k] + std::clamp(t, 0.0, h);
+      break;
+    }
+    remaining -= area;
+  }
+  double lo = 0, hi = 0;
+  chord(x, &lo, &hi);
+  const double y = lo + u[1] * (hi - lo);
+  return hull_.p_origin + hull_.basis.col(0) * x + hull_.basis.col(1) * y;
 }
 
 Eigen::Vector3d SampleUniform(const ConvexRegion& region, Rng& rng) {

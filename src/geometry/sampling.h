@@ -28,6 +28,16 @@ class RegionSampler {
   /// ("region too thin to sample") after 10,000 consecutive rejections.
   Eigen::Vector3d Sample(Rng& rng) const;
 
+  /// The point of the region at `u`, a point of the unit cube [0,1)^dimension() (scene
+  /// coordinates, docs/search.md): a measure-preserving map, so a uniform u gives a uniform
+  /// point. A segment is walked from its first vertex; a polygon is mapped by its conditional
+  /// distribution (u[0] is the quantile of the area along the region's first axis, u[1] the
+  /// fraction of the chord across it), so nearby u give nearby points; a polyhedron picks its
+  /// simplex by u[0]'s place in the cumulative volume and folds the rest into it. For regions
+  /// with balls, the first candidate comes from u and any further ones from `rng` (each still
+  /// uniform, so the result is). Throws as Sample.
+  Eigen::Vector3d SampleAt(const double* u, Rng& rng) const;
+
   /// The measure of the sampled set (length/area/volume; 0 for a point). For balls cut by
   /// other constraints, where the exact measure is not computed, the measure of the polytope
   /// part (an upper bound); measure_is_exact() tells which.
@@ -38,6 +48,9 @@ class RegionSampler {
 
  private:
   Eigen::Vector3d SamplePolytope(Rng& rng) const;
+  Eigen::Vector3d MapPolytope(const double* u) const;
+  Eigen::Vector3d MapPolygon(const double* u) const;
+  bool IsInBalls(const Eigen::Vector3d& p) const;
   int PickSimplex(Rng& rng) const;
   void BuildAliasTable(const std::vector<double>& weights);
 
@@ -46,6 +59,7 @@ class RegionSampler {
   std::vector<double> probability_;                // Vose alias table
   std::vector<int> alias_;
   std::vector<Ball> balls_;
+  AffineHull hull_;  // the region's plane, for MapPolygon
   double measure_ = 0.0;
   bool measure_is_exact_ = true;
 };

@@ -14,6 +14,7 @@
 
 #include <array>
 #include <cerrno>
+#include <cmath>
 #include <chrono>
 #include <cstdlib>
 #include <cstring>
@@ -265,6 +266,28 @@ std::string Shorten(std::string text) {
   return text;
 }
 
+// JSON has no NaN or infinity, but Python's json.dumps prints them: `"score": NaN` (or
+// Infinity, -Infinity, nan, inf), which makes the line unparsable.
+bool HasNonFiniteScore(std::string_view line) {
+  for (size_t at = line.find("\"score\""); at != std::string_view::npos;
+       at = line.find("\"score\"", at + 1)) {
+    size_t i = at + 7;
+    auto skip_spaces = [&] {
+      while (i < line.size() && (line[i] == ' ' || line[i] == '\t')) ++i;
+    };
+    skip_spaces();
+    if (i >= line.size() || line[i] != ':') continue;
+    ++i;
+    skip_spaces();
+    if (i < line.size() && (line[i] == '-' || line[i] == '+')) ++i;
+    const std::string_view rest = line.substr(i);
+    for (std::string_view word : {"NaN", "nan", "Infinity", "inf"}) {
+      if (rest.starts_with(word)) return true;
+    }
+  }
+  return false;
+}
+
 // {"outcome": "...", "detail": "...", ...} as a result; nullopt when `line` is not a JSON
 // object (then the exit status decides).
 std::optional<EpisodeResult> ParseJsonAnswer(const std::string& line) {
@@ -279,7 +302,15 @@ std::optional<EpisodeResult> ParseJsonAnswer(const std::string& line) {
         return true;
       },
       /*allow_exceptions=*/false);
-  if (!answer.is_object()) return std::nullopt;
+  if (!answer.is_object()) {
+    if (HasNonFiniteScore(line)) {
+      return EpisodeResult{"bad-answer",
+                           "the controller's \"score\" must be a finite number (larger is "
+                           "safer, 0 or less a failure), not NaN or infinity",
+                           {{"answer", Shorten(line)}}};
+    }
+    return std::nullopt;
+  }
   if (too_deep) {
     return EpisodeResult{"bad-answer",
                          fmt::format("the controller's last line nests JSON more than {} levels "
@@ -304,6 +335,17 @@ std::optional<EpisodeResult> ParseJsonAnswer(const std::string& line) {
     answer.erase("detail");
   } else {
     result.detail = "the controller reported " + result.outcome;
+  }
+  const auto score = answer.find("score");
+  if (score != answer.end()) {
+    if (!score->is_number() || !std::isfinite(score->get<double>())) {
+      return EpisodeResult{"bad-answer",
+                           "the controller's \"score\" must be a finite number (larger is "
+                           "safer, 0 or less a failure), got " + Shorten(score->dump()),
+                           {{"answer", Shorten(line)}}};
+    }
+    result.score = score->get<double>();
+    answer.erase("score");
   }
   result.extra = std::move(answer);
   return result;

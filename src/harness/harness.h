@@ -8,6 +8,7 @@
 #include <functional>
 #include <memory>
 #include <nlohmann/json.hpp>
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -23,6 +24,9 @@ struct EpisodeResult {
   std::string outcome;
   std::string detail;                               // one sentence for a person
   nlohmann::json extra = nlohmann::json::object();  // anything else the controller reports
+  /// Robustness, when the controller reports one: finite, larger is safer, <= 0 should come
+  /// with a failing outcome. Failure searches descend it (docs/search.md).
+  std::optional<double> score = std::nullopt;
 };
 
 /// A robot controller under test. RunEpisodes gives each worker thread its own controller, so
@@ -52,6 +56,10 @@ struct EpisodeRecord {
   double wall_s = 0;        // wall-clock time of the episode alone (not the sampling)
   std::string saved_scene;  // the failure's scene file under --save-failures, else empty
   std::string regenerate;   // failures only: the `prs sample` command that rewrites the scene
+  /// The scene coordinates the scene was drawn at (designs and searches), else empty.
+  std::vector<double> coordinates;
+  /// Set by searches: {"strategy": ..., "generation": ...} (docs/search.md), else null.
+  nlohmann::json search;
 };
 
 /// Called for each failing episode on the worker thread that ran it, after the scene was
@@ -103,8 +111,9 @@ struct OutcomeRow {
 /// first), ties by name.
 std::vector<OutcomeRow> TabulateOutcomes(const std::vector<EpisodeRecord>& records);
 
-/// One JSON Lines record: seed, index, outcome, detail, wall_s, extra, and for failures
-/// regenerate (and saved_scene when saved). No trailing newline.
+/// One JSON Lines record: seed, index, outcome, detail, score (when reported), wall_s, extra,
+/// coordinates and search (when set), and for failures regenerate (and saved_scene when
+/// saved). No trailing newline.
 std::string FormatRecordJson(const EpisodeRecord& record);
 
 /// `prs sample ARGS... -s S --start I -n 1`, each argument quoted for a POSIX shell when it

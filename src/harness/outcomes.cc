@@ -42,9 +42,12 @@ std::string FormatRecordJson(const EpisodeRecord& record) {
   line["index"] = record.index;
   line["outcome"] = record.result.outcome;
   line["detail"] = record.result.detail;
+  if (record.result.score) line["score"] = *record.result.score;
   line["wall_s"] = record.wall_s;
   line["extra"] = nlohmann::ordered_json::parse(
       record.result.extra.dump(-1, ' ', false, nlohmann::json::error_handler_t::replace));
+  if (!record.coordinates.empty()) line["coordinates"] = record.coordinates;
+  if (!record.search.is_null()) line["search"] = record.search;
   if (!record.regenerate.empty()) line["regenerate"] = record.regenerate;
   if (!record.saved_scene.empty()) line["saved_scene"] = record.saved_scene;
   // Controllers may send any bytes; invalid UTF-8 becomes U+FFFD instead of an exception.

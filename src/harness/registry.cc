@@ -35,6 +35,14 @@ Registry& GetRegistry() {
               "a demonstration without simulation, not the paper's controller: success when "
               "each Cube is 0.25 to 0.855 m from the nearest Robot, else no-path",
               MakeDemoReachController);
+    AddLocked(*built, "planted-1-percent",
+              "a test controller for failure searches: fails iff the Cube lies within 9 cm of "
+              "(-0.8, 0.3) (about 1 % of table_cube.prs); score = distance to that disk",
+              [] { return MakePlantedController(PlantedOnePercent()); });
+    AddLocked(*built, "planted-1-permille",
+              "a test controller for failure searches: fails iff the Cube lies within 2.88 cm "
+              "of (-0.8, 0.3) (about 0.1 % of table_cube.prs); score = distance to that disk",
+              [] { return MakePlantedController(PlantedOnePermille()); });
     return built;
   }();
   return *registry;

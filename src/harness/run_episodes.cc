@@ -82,6 +82,7 @@ class EpisodeRunner {
     EpisodeRecord record;
     record.seed = scene.seed;
     record.index = scene.index;
+    record.coordinates = scene.coordinates;
     std::unique_ptr<Controller> controller = pool_.Take();
     const auto begin = std::chrono::steady_clock::now();
     record.result = RunGuarded(*controller, scene, scene_json);

@@ -93,40 +93,37 @@ Value Interpreter::Draw(const Distribution& d, SourceSpan span) {
   Value result;
   switch (d.kind) {
     case DistributionKind::kRange:
-      result = DrawUniform(std::min(arg(0), arg(1)), std::max(arg(0), arg(1)));
+      result = DrawUniform(std::min(arg(0), arg(1)), std::max(arg(0), arg(1)), span, "Range");
       break;
     case DistributionKind::kDiscreteRange: {
       const double lo = std::ceil(std::min(arg(0), arg(1))), hi = std::floor(std::max(arg(0), arg(1)));
       if (lo > hi) Fail(span, "bad-value", "DiscreteRange contains no integer");
-      result = static_cast<double>(DrawInt(static_cast<int64_t>(lo), static_cast<int64_t>(hi)));
+      result = static_cast<double>(
+          DrawInt(static_cast<int64_t>(lo), static_cast<int64_t>(hi), span, "DiscreteRange"));
       break;
     }
     case DistributionKind::kNormal:
       if (!(arg(1) >= 0)) Fail(span, "bad-value", "a normal's standard deviation must be >= 0");
-      result = DrawNormal(arg(0), arg(1));
+      result = DrawNormal(arg(0), arg(1), span);
       break;
     case DistributionKind::kTruncatedNormal: {
       const double mean = arg(0), std = arg(1), lo = arg(2), hi = arg(3);
       if (!(std > 0) || !(lo < hi)) {
         Fail(span, "bad-value", "TruncatedNormal needs std > 0 and low < high");
       }
-      int tries = 0;
-      double x = DrawNormal(mean, std);
-      while (x < lo || x > hi) {
-        if (++tries > kMaxTruncatedNormalTries) {
-          Fail(span, "bad-value", "TruncatedNormal's interval [" + Repr(lo) + ", " + Repr(hi) +
-                                      "] holds almost none of the normal's mass");
-        }
-        x = DrawNormal(mean, std);
+      const double x = DrawTruncatedNormal(mean, std, lo, hi, span, kMaxTruncatedNormalTries);
+      if (std::isnan(x)) {
+        Fail(span, "bad-value", "TruncatedNormal's interval [" + Repr(lo) + ", " + Repr(hi) +
+                                    "] holds almost none of the normal's mass");
       }
       result = x;
       break;
     }
     case DistributionKind::kUniformChoice:
-      result = d.args[DrawInt(0, static_cast<int64_t>(d.args.size()) - 1)];
+      result = d.args[DrawInt(0, static_cast<int64_t>(d.args.size()) - 1, span, "Uniform")];
       break;
     case DistributionKind::kDiscrete: {
-      double u = DrawUniform(0, 1);
+      double u = DrawUniform(0, 1, span, "Discrete");
       size_t i = 0;
       while (i + 1 < d.weights.size() && u >= d.weights[i]) u -= d.weights[i++];
       result = d.args[i];
@@ -146,7 +143,7 @@ Value Interpreter::Resample(const Value& v, SourceSpan span) {
   if (tuple && (*tuple)->elements.size() == 2 && (*tuple)->elements[0].Is<double>() &&
       (*tuple)->elements[1].Is<double>()) {
     const double a = (*tuple)->elements[0].As<double>(), b = (*tuple)->elements[1].As<double>();
-    return DrawUniform(std::min(a, b), std::max(a, b));
+    return DrawUniform(std::min(a, b), std::max(a, b), span, "interval");
   }
   Fail(span, "bad-resample",
        "resample needs a value drawn from a distribution (Range, Normal, Uniform, ...), but this "

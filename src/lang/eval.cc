@@ -136,7 +136,7 @@ double Interpreter::ToNumber(const Value& v, SourceSpan span, const std::string&
     if (elements.size() == 2 && elements[0].Is<double>() && elements[1].Is<double>()) {
       if (!(*tuple)->drawn) {
         const double lo = elements[0].As<double>(), hi = elements[1].As<double>();
-        (*tuple)->drawn = DrawUniform(std::min(lo, hi), std::max(lo, hi));
+        (*tuple)->drawn = DrawUniform(std::min(lo, hi), std::max(lo, hi), span, "interval");
       }
       return *(*tuple)->drawn;
     }

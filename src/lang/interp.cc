@@ -243,7 +243,7 @@ void Interpreter::ExecRequire(const RequireStmt& node, SourceSpan span) {
       Fail(node.probability->span, "bad-value",
            "a requirement's probability must be between 0 and 1, got " + FormatNumber(p));
     }
-    if (DrawUniform(0, 1) >= p) return;  // not enforced in this scene
+    if (DrawUniform(0, 1, node.probability->span, "require[p]") >= p) return;  // not enforced in this scene
   }
   if (Truthy(Eval(*node.condition), node.condition->span)) return;
   const LineColumn where = program_.sources.CalcLineColumn(span.file, span.begin);
@@ -332,21 +332,6 @@ void Interpreter::Fail(SourceSpan span, const std::string& id, const std::string
 [[noreturn]] void Interpreter::Reject(RejectionKind kind, std::string culprit, SourceSpan span,
                          std::string detail) {
   throw RejectSignal{Rejection{kind, std::move(culprit), span, std::move(detail)}};
-}
-
-double Interpreter::DrawUniform(double lo, double hi) {
-  ++draws_;
-  return rng_.Uniform(lo, hi);
-}
-
-double Interpreter::DrawNormal(double mean, double std) {
-  ++draws_;
-  return mean + std * rng_.Normal();
-}
-
-int64_t Interpreter::DrawInt(int64_t lo, int64_t hi) {
-  ++draws_;
-  return rng_.UniformInt(lo, hi);
 }
 
 }  // namespace internal

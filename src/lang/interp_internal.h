@@ -81,11 +81,17 @@ class Interpreter {
   [[noreturn]] void Fail(SourceSpan span, const std::string& id, const std::string& message,
                          std::vector<DiagnosticNote> notes = {}) const;
 
-  // --- randomness: every draw goes through here, so a scene with no draws is deterministic ---
-  double DrawUniform(double lo, double hi);
-  double DrawNormal(double mean, double std);
-  int64_t DrawInt(int64_t lo, int64_t hi);
-  geometry::Rng& rng() { draws_++; return rng_; }
+  // --- randomness (coordinates.cc): every draw goes through here, so a scene with no draws is
+  // deterministic; each reads its scene coordinates when the attempt runs at a point ---
+  // `draw` names the draw's kind (CoordinateInfo::draw); `span` its source.
+  double DrawUniform(double lo, double hi, SourceSpan span, const char* draw);
+  double DrawNormal(double mean, double std, SourceSpan span);
+  // Returns NaN when the interval holds almost none of the normal's mass.
+  double DrawTruncatedNormal(double mean, double std, double lo, double hi, SourceSpan span,
+                             int max_tries);
+  int64_t DrawInt(int64_t lo, int64_t hi, SourceSpan span, const char* draw);
+  // A uniform position of object `index` in the sampler's region.
+  Eigen::Vector3d DrawPosition(const geometry::RegionSampler& sampler, int index, SourceSpan span);
 
  private:
   friend class ExprEvaluator;
@@ -183,7 +189,7 @@ class Interpreter {
       const std::vector<PositionConstraint>& constraints, const geometry::ConvexRegion& region,
       int index, SourceSpan span);
   std::vector<int> FixedObstacles(int index) const;
-  Eigen::Vector3d SampleFixed(const FixedPlacement& placement);
+  Eigen::Vector3d SampleFixed(const FixedPlacement& placement, int index, SourceSpan span);
   // Fixed objects (ObjectPlan::object_fixed) built once per RunCache and copied afterwards.
   const SceneObject* CachedFixedObject(const ObjectPlan& plan) const;
   void StoreFixedObject(const ObjectPlan& plan, int index, int64_t draws_before);
@@ -222,6 +228,14 @@ class Interpreter {
   int eval_depth_ = 0;  // nested Eval calls, across function calls
   int64_t loop_iterations_ = 0;
   int64_t draws_ = 0;
+  // Scene coordinates (coordinates.cc): the next unread one, whether the stream took over, and
+  // the object property being evaluated (for coordinate names).
+  const double* TakeCoordinates(int k, const char* draw, SourceSpan span, int object = -1);
+  std::string NameCoordinate(const char* draw, SourceSpan span, int object) const;
+  int next_coordinate_ = 0;
+  bool coordinates_done_ = false;
+  int naming_object_ = -1;
+  const std::string* naming_property_ = nullptr;
   // Naive mode: the specifier that rejects the scene. As in the paper's tool, specifiers are
   // checked as constraints once the scene is complete, after collisions and the workspace, and
   // relative-position ones before containment ones (KeepsNaiveViolation).

@@ -68,10 +68,36 @@ struct RunCacheDeleter {
 };
 std::unique_ptr<RunCache, RunCacheDeleter> MakeRunCache();
 
+/// One scene coordinate: a number of [0, 1) that one draw of an attempt reads when the
+/// attempt runs at a point of the unit cube (docs/search.md, "Scene coordinates").
+struct CoordinateInfo {
+  /// Readable and derived from the program: "Cube#5.position[0]", "tr_1.width",
+  /// "Range at table_cube.prs:19:13". Names may repeat when one expression draws twice.
+  std::string name;
+  /// What reads it: "Range", "DiscreteRange", "Normal", "TruncatedNormal", "Uniform",
+  /// "Discrete", "require[p]", "interval", "position" (one per dimension of the region),
+  /// "position piece" (which piece of a union).
+  std::string draw;
+  SourceSpan span;  // the draw in the source
+};
+
+/// Where an attempt's draws come from. Draws take their numbers from `values`, in the order
+/// the attempt makes them, each draw k numbers at once (1 for a number, one per dimension for
+/// a position); the first draw that does not fit in what is left, and every draw after it,
+/// reads the Rng stream instead. With no values every draw reads the stream (the default).
+struct CoordinateInput {
+  const double* values = nullptr;  // the attempt's point u, each in [0, 1)
+  int size = 0;
+  /// When set, every draw appends one entry per number it reads (as if `size` were
+  /// unlimited), whether the numbers came from `values` or the stream.
+  std::vector<CoordinateInfo>* log = nullptr;
+};
+
 struct RunOptions {
   SamplingMode mode = SamplingMode::kRegion;
   RunLimits limits;
   RunCache* cache = nullptr;  // optional; never changes the result, only the speed
+  CoordinateInput coordinates;
 };
 
 /// The outcome of one attempt: a scene, or the reason it was rejected.

@@ -34,7 +34,14 @@ Value Interpreter::CreateObject(const ObjectPlan& plan, SourceSpan span) {
   completed_.push_back(false);
   for (const PlanStep& step : plan.steps) {
     if (step.kind == PlanStepKind::kPosition) {
+      static const std::string kPosition = "position";
+      const int saved_object = naming_object_;
+      const std::string* saved_property = naming_property_;
+      naming_object_ = index;  // draws in the position's specifiers are named after it
+      naming_property_ = &kPosition;
       const Vector3d p = PlacePosition(plan, index, span);
+      naming_object_ = saved_object;
+      naming_property_ = saved_property;
       scene_.objects[index].p_WO = p;
       SetProperty(index, "position", Value(p), span);
     } else {
@@ -51,6 +58,11 @@ Value Interpreter::CreateObject(const ObjectPlan& plan, SourceSpan span) {
 }
 
 void Interpreter::RunPlanStep(const PlanStep& step, int index, SourceSpan span) {
+  // Draws made for this step are named after the property (scene coordinates).
+  const int saved_object = naming_object_;
+  const std::string* saved_property = naming_property_;
+  naming_object_ = index;
+  naming_property_ = &step.property;
   switch (step.kind) {
     case PlanStepKind::kDefault:
       SetProperty(index, step.property, EvalDefault(*step.default_value, index),
@@ -65,6 +77,8 @@ void Interpreter::RunPlanStep(const PlanStep& step, int index, SourceSpan span) 
     case PlanStepKind::kPosition:
       break;  // handled by CreateObject
   }
+  naming_object_ = saved_object;
+  naming_property_ = saved_property;
   (void)span;
 }
 

@@ -50,7 +50,7 @@ std::string DescribeSpecifier(const Specifier& s, const SourceManager& sources) 
 }
 
 Vector3d Interpreter::PlacePosition(const ObjectPlan& plan, int index, SourceSpan span) {
-  if (const FixedPlacement* cached = CachedPlacement(plan)) return SampleFixed(*cached);
+  if (const FixedPlacement* cached = CachedPlacement(plan)) return SampleFixed(*cached, index, span);
   if (plan.position_specifiers.empty()) {
     const PropertyDefault* d = plan.cls->FindDefault("position");
     return ToVector(EvalDefault(*d, index), d->expr ? d->expr->span : span, "the default position");
@@ -116,7 +116,7 @@ Vector3d Interpreter::SampleRegion(const std::vector<PositionConstraint>& constr
                       span, constraints, workspace, index, span);
   }
   try {
-    return geometry::RegionSampler(region).Sample(rng());
+    return DrawPosition(geometry::RegionSampler(region), index, span);
   } catch (const std::domain_error&) {
     Reject(RejectionKind::kEmptyRegion, "no room for " + scene_.objects[index].DisplayName(index), span);
   }
@@ -392,7 +392,7 @@ Vector3d Interpreter::SampleNaive(const std::vector<PositionConstraint>& constra
       Reject(RejectionKind::kContainment, scene_.objects[index].DisplayName(index) +
                                               " has no room in the workspace", span);
     }
-    p = geometry::RegionSampler(domain).Sample(rng());
+    p = DrawPosition(geometry::RegionSampler(domain), index, span);
   }
   for (const PositionConstraint& c : constraints) {
     if (c.is_point) continue;

@@ -44,7 +44,7 @@ Vector3d Interpreter::PlaceFixed(const ObjectPlan& plan,
   std::shared_ptr<const FixedPlacement> placement =
       BuildFixedPlacement(constraints, region, index, span);
   if (options_.cache) options_.cache->placements[&plan] = placement;
-  return SampleFixed(*placement);
+  return SampleFixed(*placement, index, span);
 }
 
 // Earlier fixed objects this one could collide with.
@@ -109,13 +109,20 @@ std::shared_ptr<const FixedPlacement> Interpreter::BuildFixedPlacement(
   return placement;
 }
 
-Vector3d Interpreter::SampleFixed(const FixedPlacement& placement) {
+Vector3d Interpreter::SampleFixed(const FixedPlacement& placement, int index, SourceSpan span) {
   size_t i = 0;
   if (placement.pieces.size() > 1) {
-    const double u = DrawUniform(0, placement.cumulative_measure.back());
+    static const std::string kPiece = "position piece";
+    const int saved_object = naming_object_;
+    const std::string* saved_property = naming_property_;
+    naming_object_ = index;
+    naming_property_ = &kPiece;
+    const double u = DrawUniform(0, placement.cumulative_measure.back(), span, "position piece");
+    naming_object_ = saved_object;
+    naming_property_ = saved_property;
     while (i + 1 < placement.pieces.size() && u >= placement.cumulative_measure[i]) ++i;
   }
-  return placement.pieces[i].Sample(rng());
+  return DrawPosition(placement.pieces[i], index, span);
 }
 
 const SceneObject* Interpreter::CachedFixedObject(const ObjectPlan& plan) const {

@@ -73,12 +73,18 @@ SampledScene SceneSampler::Sample(uint64_t seed, uint64_t index) {
   geometry::Rng rng(seed, index);
   lang::RunOptions run = options_.run;
   run.cache = cache_.get();
+  const AttemptPoints* points = options_.points;
+  std::vector<double> u(points ? points->dimension() : 0);
   while (result.attempts < options_.max_attempts) {
+    const bool at_point = points && points->Point(seed, index, result.attempts, u.data());
+    run.coordinates = at_point ? lang::CoordinateInput{u.data(), static_cast<int>(u.size())}
+                               : lang::CoordinateInput{};
     ++result.attempts;
     if (options_.live) options_.live->attempts.fetch_add(1, std::memory_order_relaxed);
     lang::AttemptResult attempt = lang::RunAttempt(program_, rng, run);
     if (auto* scene = std::get_if<lang::Scene>(&attempt)) {
       result.scene = std::move(*scene);
+      if (at_point) result.coordinates = std::move(u);
       return result;
     }
     if (options_.live) options_.live->rejections.fetch_add(1, std::memory_order_relaxed);
@@ -88,6 +94,34 @@ SampledScene SceneSampler::Sample(uint64_t seed, uint64_t index) {
     if (rejection.certain) ThrowCertainFailure(rejection);
   }
   ThrowSamplingFailure(result.rejections, result.attempts);
+}
+
+std::vector<lang::CoordinateInfo> DescribeCoordinates(const lang::CompiledProgram& program,
+                                                      const SampleOptions& options,
+                                                      int probe_attempts) {
+  std::vector<lang::CoordinateInfo> longest;
+  geometry::Rng rng(0, 0);
+  lang::RunOptions run = options.run;
+  run.cache = nullptr;
+  for (int i = 0; i < probe_attempts; ++i) {
+    std::vector<lang::CoordinateInfo> log;
+    run.coordinates = {nullptr, 0, &log};
+    const lang::AttemptResult attempt = lang::RunAttempt(program, rng, run);
+    if (log.size() > longest.size()) longest = std::move(log);
+    const auto* rejection = std::get_if<lang::Rejection>(&attempt);
+    if (rejection && rejection->certain) break;  // every attempt is the same
+  }
+  if (longest.size() > static_cast<size_t>(kMaxCoordinates)) longest.resize(kMaxCoordinates);
+  // Several draws named after one property (V3D((0, 1), (0, 1), 0) as a position) are told
+  // apart by where they are in the source.
+  std::map<std::string, int> uses;
+  for (const lang::CoordinateInfo& c : longest) ++uses[c.name];
+  for (lang::CoordinateInfo& c : longest) {
+    if (uses[c.name] < 2) continue;
+    const lang::LineColumn where = program.sources.CalcLineColumn(c.span.file, c.span.begin);
+    c.name += " (" + std::to_string(where.line) + ":" + std::to_string(where.column) + ")";
+  }
+  return longest;
 }
 
 SampledScene SampleScene(const lang::CompiledProgram& program, uint64_t seed, uint64_t index,

@@ -10,6 +10,7 @@
 #include <optional>
 #include <string>
 #include <utility>
+#include <vector>
 
 #include "lang/lang.h"
 
@@ -22,10 +23,26 @@ struct LiveCounts {
   std::atomic<int64_t> rejections{0};
 };
 
+/// The points of the unit cube at which a sampler's attempts run (scene coordinates,
+/// docs/search.md): a space-filling design, or a search's proposals. Must be thread-safe and
+/// a pure function of its arguments, so scenes stay the same for any thread count.
+class AttemptPoints {
+ public:
+  virtual ~AttemptPoints() = default;
+  /// The number of coordinates of each point (DescribeCoordinates(...).size()).
+  virtual int dimension() const = 0;
+  /// Fills u[0..dimension()) with numbers of [0, 1) for attempt `attempt` (0 for the first)
+  /// of scene `index` of `seed` and returns true; or returns false, and that attempt reads the
+  /// Rng stream alone, as without points.
+  virtual bool Point(uint64_t seed, uint64_t index, int64_t attempt, double* u) const = 0;
+};
+
 struct SampleOptions {
   lang::RunOptions run;
   int64_t max_attempts = 10'000;
   LiveCounts* live = nullptr;  // optional; must outlive the samplers
+  /// Optional; must outlive the samplers. Without it every attempt reads the stream.
+  const AttemptPoints* points = nullptr;
 };
 
 /// Rejections of one scene (or many), keyed by (kind, culprit).
@@ -46,6 +63,9 @@ struct SampledScene {
   int64_t attempts = 0;
   RejectionCounts rejections;
   lang::Scene scene;
+  /// The scene coordinates of the accepted attempt when it ran at a point (AttemptPoints),
+  /// else empty.
+  std::vector<double> coordinates;
 };
 
 /// Samples scenes of one program. Holds per-thread caches (regions that are the same in every
@@ -70,6 +90,15 @@ class SceneSampler {
   SampleOptions options_;
   std::unique_ptr<lang::RunCache, lang::RunCacheDeleter> cache_;
 };
+
+/// The scene coordinates of the program (docs/search.md): one entry per number the longest of
+/// `probe_attempts` attempts (scene 0 of seed 0 and its retries, on the stream) drew, at most
+/// kMaxCoordinates. Programs whose draws vary (random loops, resampling) may draw more in
+/// other attempts; those draws read the stream. Throws lang::ScenarioError for program errors.
+inline constexpr int kMaxCoordinates = 1024;
+std::vector<lang::CoordinateInfo> DescribeCoordinates(const lang::CompiledProgram& program,
+                                                      const SampleOptions& options = {},
+                                                      int probe_attempts = 64);
 
 /// Samples scene `index` of `seed` with a fresh SceneSampler (convenient, but without the
 /// caches' speed-up across calls).

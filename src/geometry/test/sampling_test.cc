@@ -204,5 +204,71 @@ TEST(SamplingTest, FailuresThrow) {
   EXPECT_TRUE(cube.Contains(SampleHitAndRun(cube, {0, 0, 0}, 50, rng)));
 }
 
+
+// SampleAt with i.i.d. uniform u must be exactly uniform too (the same chi-square tests).
+void ExpectUniformAt(const ConvexRegion& region, const Grid& grid, uint64_t seed) {
+  const RegionSampler sampler(region);
+  Rng rng(seed), fallback(seed + 1000);
+  const auto result = RunChiSquare(region, grid, [&] {
+    const double u[3] = {rng.Uniform01(), rng.Uniform01(), rng.Uniform01()};
+    return sampler.SampleAt(u, fallback);
+  });
+  ASSERT_GE(result.degrees_of_freedom, 5);
+  EXPECT_LT(result.statistic, ChiSquareQuantile999(result.degrees_of_freedom))
+      << "df " << result.degrees_of_freedom;
+}
+
+TEST(SampleAtTest, UniformOnPolygonsAndPolyhedra) {
+  const Eigen::Matrix3d R = CalcRotationFromYawPitchRoll(0.7, 0.2, 0.1);
+  const Eigen::Vector3d center(1, -1, 0.7);
+  ExpectUniformAt(ConvexRegion::MakeRect3D(center, R, 1.8, 0.1),
+                  {center + R * Eigen::Vector3d(-0.9, -0.05, 0), R, {18, 4, 1}, {0.1, 0.025, 1}},
+                  201);
+  ExpectUniformAt(ThinSliver(), SliverGrid(), 202);
+  // A 12-gon, and a skewed tetrahedron.
+  ConvexRegion polygon = ConvexRegion::MakeRect3D({0, 0, 1}, kYaw30, 1.2, 1.2);
+  for (int k = 0; k < 12; ++k) {
+    const double t = 2 * std::numbers::pi * k / 12 + 0.1;
+    const Eigen::Vector3d n = kYaw30 * Eigen::Vector3d(std::cos(t), std::sin(t), 0);
+    polygon = Intersect(polygon, ConvexRegion::FromHalfSpaces({{n, n.z() + 0.45 + 0.01 * k}}));
+  }
+  ExpectUniformAt(polygon,
+                  {Eigen::Vector3d(0, 0, 1) + kYaw30 * Eigen::Vector3d(-0.6, -0.6, 0), kYaw30,
+                   {8, 8, 1}, {0.15, 0.15, 1}},
+                  203);
+  const ConvexRegion cube = ConvexRegion::MakeCuboid({0, 0, 0}, Eigen::Matrix3d::Identity(), 1, 2, 1);
+  const ConvexRegion cut = Intersect(cube, ConvexRegion::MakeHalfSpace({0, 0, 0}, {1, 1, 1}));
+  ExpectUniformAt(cut, {{-0.5, -1, -0.5}, Eigen::Matrix3d::Identity(), {4, 8, 4}, {0.25, 0.25, 0.25}},
+                  204);
+}
+
+TEST(SampleAtTest, PointsInsideAndNearbyCoordinatesGiveNearbyPoints) {
+  Rng rng(205);
+  const ConvexRegion triangle =
+      ConvexRegion::MakeConvexPolygon3D({{0, 0, 0}, {1, 0, 0.5}, {0.4, 1, 0.2}});
+  const ConvexRegion segment = ConvexRegion::MakeSegment({0, 0, 0}, {1, -1, 2});
+  const ConvexRegion ball = ConvexRegion::MakeSphere({0, 1, 0}, 0.3);
+  for (const ConvexRegion* region : {&triangle, &segment, &ball}) {
+    const RegionSampler sampler(*region);
+    for (int i = 0; i < 2000; ++i) {
+      const double u[3] = {rng.Uniform01(), rng.Uniform01(), rng.Uniform01()};
+      ASSERT_TRUE(region->Contains(sampler.SampleAt(u, rng))) << region->Describe();
+    }
+  }
+  // A polygon's map is continuous: a step of 1e-6 in u moves the point by micrometres.
+  const RegionSampler sampler(triangle);
+  for (int i = 0; i < 500; ++i) {
+    double u[3] = {0.001 + 0.998 * rng.Uniform01(), rng.Uniform01(), 0};
+    const Eigen::Vector3d p = sampler.SampleAt(u, rng);
+    u[0] += 1e-6;
+    u[1] = std::min(u[1] + 1e-6, 0.999999);
+    EXPECT_LT((sampler.SampleAt(u, rng) - p).norm(), 1e-4);
+  }
+  // The corners of the unit square map to the polygon's extremes along its first axis.
+  const double u_lo[3] = {0, 0.5, 0}, u_hi[3] = {0.999999999, 0.5, 0};
+  const double extent = (sampler.SampleAt(u_hi, rng) - sampler.SampleAt(u_lo, rng)).norm();
+  EXPECT_GT(extent, 0.5);
+}
+
 }  // namespace
 }  // namespace prs::geometry

@@ -141,6 +141,28 @@ TEST(InterpretAnswerTest, LastNonEmptyLineIsTheAnswer) {
   EXPECT_EQ(InterpretAnswer(answer, 60).outcome, "timeout");
 }
 
+TEST(InterpretAnswerTest, ScoreMustBeAFiniteNumber) {
+  ExecAnswer answer;
+  answer.stdout_tail = "{\"outcome\": \"no-path\", \"score\": -0.25, \"gap\": 1}\n";
+  EpisodeResult result = InterpretAnswer(answer, 60);
+  EXPECT_EQ(result.outcome, "no-path");
+  ASSERT_TRUE(result.score.has_value());
+  EXPECT_EQ(*result.score, -0.25);
+  EXPECT_FALSE(result.extra.contains("score"));
+  EXPECT_EQ(result.extra["gap"], 1);
+  for (const char* bad : {"{\"outcome\": \"success\", \"score\": \"0.5\"}",
+                          "{\"outcome\": \"success\", \"score\": NaN}",
+                          "{\"outcome\": \"success\", \"score\": -Infinity}",
+                          "{\"outcome\": \"success\", \"score\": null}"}) {
+    answer.stdout_tail = bad;
+    result = InterpretAnswer(answer, 60);
+    EXPECT_EQ(result.outcome, "bad-answer") << bad;
+    EXPECT_NE(result.detail.find("finite number"), std::string::npos) << result.detail;
+  }
+  answer.stdout_tail = "{\"outcome\": \"success\"}";
+  EXPECT_FALSE(InterpretAnswer(answer, 60).score.has_value());
+}
+
 TEST(ExecControllerOptionsTest, RejectsEmptyCommandAndNonPositiveTimeout) {
   EXPECT_THROW(ExecController({"", 1, nullptr}), std::invalid_argument);
   EXPECT_THROW(ExecController({"true", 0, nullptr}), std::invalid_argument);

@@ -216,7 +216,28 @@ TEST(RegistryTest, DemoReachIsBuiltInAndNamesAreUnique) {
   RegisterController("test-only", "for this test", MakeDemoReachController);
   std::vector<std::string> names;
   for (const ControllerInfo& info : ListControllers()) names.push_back(info.name);
-  EXPECT_EQ(names, (std::vector<std::string>{"demo-reach", "test-only"}));
+  EXPECT_EQ(names, (std::vector<std::string>{"demo-reach", "planted-1-percent",
+                                              "planted-1-permille", "test-only"}));
+}
+
+TEST(PlantedTest, FailuresHoldThePlannedShareOfTableCube) {
+  // 50,000 scenes: about 525 (1.05 %) and 56 (0.11 %) failures, measured with 200,000 scenes
+  // (docs/search.md); the bounds are more than 4 standard deviations wide.
+  auto program = CompileTableCube();
+  for (const auto& [failure, lo, hi] :
+       {std::tuple{PlantedOnePercent(), 430, 620}, std::tuple{PlantedOnePermille(), 27, 90}}) {
+    const RunSummary summary = RunEpisodes(
+        *program, [f = failure] { return MakePlantedController(f); }, MakeOptions(50000, 2));
+    int64_t failures = 0;
+    for (const EpisodeRecord& record : summary.records) {
+      ASSERT_TRUE(record.result.score.has_value());
+      const bool failed = record.result.outcome == "planted-failure";
+      failures += failed;
+      EXPECT_EQ(failed, *record.result.score <= 0);
+    }
+    EXPECT_GE(failures, lo);
+    EXPECT_LE(failures, hi);
+  }
 }
 
 TEST(DemoReachTest, ClassifiesByTheDistanceFromCubeToNearestRobot) {

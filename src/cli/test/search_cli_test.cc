@@ -1,0 +1,105 @@
+// End-to-end tests of `prs search`, `--design` and `prs check --coordinates`: records with
+// coordinates, scores and generations, the same for any thread count; designs change scenes
+// but keep them valid and reproducible; and bad requests exit 2 with a message to act on.
+#include <nlohmann/json.hpp>
+
+#include "cli/test/prs_test_fixture.h"
+
+namespace prs::cli {
+namespace {
+
+using nlohmann::json;
+
+std::vector<json> ReadJsonLines(const fs::path& path) {
+  std::vector<json> lines;
+  std::stringstream text(ReadText(path));
+  for (std::string line; std::getline(text, line);) lines.push_back(json::parse(line));
+  return lines;
+}
+
+TEST_F(PrsTest, SearchWritesRecordsTheSameForAnyThreadCount) {
+  const std::string one = (dir_ / "one.jsonl").string(), two = (dir_ / "two.jsonl").string();
+  for (const auto& [out, threads] : {std::pair{one, "1"}, std::pair{two, "2"}}) {
+    const Result r = Run({"search", Example("table_cube.prs"), "--controller",
+                          "planted-1-percent", "--budget", "200", "-s", "4", "--threads",
+                          threads, "-o", out});
+    ASSERT_EQ(r.exit_code, 0) << r.err;
+    EXPECT_NE(r.out.find("planted-failure"), std::string::npos) << r.out;
+    EXPECT_NE(r.out.find("generation"), std::string::npos) << r.out;
+    EXPECT_NE(r.err.find("ce found"), std::string::npos) << r.err;
+  }
+  std::vector<json> a = ReadJsonLines(one), b = ReadJsonLines(two);
+  ASSERT_EQ(a.size(), 200u);
+  for (std::vector<json>* records : {&a, &b}) {
+    for (json& record : *records) record.erase("wall_s");
+  }
+  EXPECT_EQ(a, b);
+  EXPECT_EQ(a[0]["search"]["strategy"], "ce");
+  EXPECT_EQ(a[199]["search"]["generation"], 9);
+  EXPECT_EQ(a[0]["coordinates"].size(), 11u);
+  EXPECT_TRUE(a[0]["score"].is_number());
+}
+
+TEST_F(PrsTest, SearchRefusesBadRequests) {
+  Result r = Run({"search", Example("table_cube.prs"), "--controller", "planted-1-percent",
+                  "--budget", "10", "--strategy", "cee"});
+  EXPECT_EQ(r.exit_code, 2);
+  EXPECT_NE(r.err.find("did you mean 'ce'"), std::string::npos) << r.err;
+  r = Run({"search", Example("table_cube.prs"), "--controller", "planted-1-percent", "--budget",
+           "0"});
+  EXPECT_EQ(r.exit_code, 2);
+  EXPECT_NE(r.err.find("--budget"), std::string::npos) << r.err;
+  const std::string fixed = Write("fixed.prs", "Object at Vector3D(0, 0, 0)\n");
+  r = Run({"search", fixed, "--controller", "planted-1-percent", "--budget", "10"});
+  EXPECT_EQ(r.exit_code, 2);
+  EXPECT_NE(r.err.find("draws nothing at random"), std::string::npos) << r.err;
+  r = Run({"search", Example("table_cube.prs"), "--controller", "planted-1-percnt", "--budget",
+           "10"});
+  EXPECT_EQ(r.exit_code, 2);
+  EXPECT_NE(r.err.find("did you mean 'planted-1-percent'"), std::string::npos) << r.err;
+  // An --exec controller whose score is not a finite number: every episode says so.
+  const std::string out = (dir_ / "nan.jsonl").string();
+  r = Run({"search", Example("table_cube.prs"), "--exec",
+           "echo '{\"outcome\": \"success\", \"score\": NaN}'", "--budget", "3", "-o", out});
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  for (const json& record : ReadJsonLines(out)) {
+    EXPECT_EQ(record["outcome"], "bad-answer");
+    EXPECT_NE(record["detail"].get<std::string>().find("finite number"), std::string::npos);
+  }
+}
+
+TEST_F(PrsTest, DesignsGiveOtherValidScenesReproducibly) {
+  const Result iid = Run({"sample", Example("table_cube.prs"), "-n", "50", "-s", "3"});
+  ASSERT_EQ(iid.exit_code, 0) << iid.err;
+  for (const std::string design : {"sobol", "halton", "lattice"}) {
+    const Result a = Run({"sample", Example("table_cube.prs"), "-n", "50", "-s", "3", "--design",
+                          design, "--threads", "1"});
+    const Result b = Run({"sample", Example("table_cube.prs"), "-n", "50", "-s", "3", "--design",
+                          design, "--threads", "2"});
+    ASSERT_EQ(a.exit_code, 0) << a.err;
+    EXPECT_EQ(a.out, b.out) << design;
+    EXPECT_NE(a.out, iid.out) << design;
+  }
+  const Result r = Run({"sample", Example("table_cube.prs"), "--design", "sobel"});
+  EXPECT_EQ(r.exit_code, 2);
+  EXPECT_NE(r.err.find("did you mean 'sobol'"), std::string::npos) << r.err;
+  const Result t = Run({"test", Example("table_cube.prs"), "--controller", "planted-1-percent",
+                        "-n", "20", "--design", "halton", "-o", (dir_ / "t.jsonl").string()});
+  ASSERT_EQ(t.exit_code, 0) << t.err;
+  EXPECT_EQ(ReadJsonLines(dir_ / "t.jsonl")[0]["coordinates"].size(), 11u);
+}
+
+TEST_F(PrsTest, CheckListsTheSceneCoordinates) {
+  const Result r = Run({"check", Example("table_cube.prs"), "--coordinates"});
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  EXPECT_NE(r.out.find("11 scene coordinates"), std::string::npos) << r.out;
+  EXPECT_NE(r.out.find("Cube#5.position[1]"), std::string::npos) << r.out;
+  EXPECT_NE(r.out.find("table_cube.prs:17:1"), std::string::npos) << r.out;
+  const std::string fixed = Write("fixed.prs", "Object at Vector3D(0, 0, 0)\n");
+  const Result f = Run({"check", fixed, "--coordinates"});
+  EXPECT_EQ(f.exit_code, 0);
+  EXPECT_NE(f.out.find("no scene coordinates"), std::string::npos) << f.out;
+}
+
+}  // namespace
+}  // namespace prs::cli

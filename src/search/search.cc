@@ -1,0 +1,302 @@
+// The search loop: generation after generation, a proposal over scene coordinates (i.i.d.,
+// cross-entropy or annealing), one batch of episodes at its points on all threads, and an
+// update from the batch's outcomes and scores.
+#include "search/search.h"
+
+#include <algorithm>
+#include <cmath>
+#include <numeric>
+
+#include "geometry/random.h"
+#include "search/design.h"
+
+namespace prs::search {
+namespace {
+
+// Proposals draw from streams of their own, never from a scene's stream (seed, index).
+constexpr uint64_t kProposalSalt = 0x5EA2C4E1B0F3A977ULL;
+constexpr uint64_t kAcceptSalt = 0x3C6EF372FE94F82BULL;
+// Proposed points a scene may reject before its attempts read the stream alone (so a
+// proposal stuck where every attempt is rejected still finishes its scenes, exactly).
+constexpr int64_t kMaxProposalAttempts = 100;
+
+// Cross-entropy method (Rubinstein & Kroese), elitist: the elite is the best fraction of
+// everything evaluated so far (as many as one generation holds), so a good point found early
+// is not forgotten; smoothing of the update, the smallest standard deviation (in coordinate
+// units), and the share of uniform points kept in every generation so that the proposal never
+// loses sight of the whole space. Tuned on the planted failures (docs/benchmarks.md).
+constexpr double kEliteFraction = 0.2;
+constexpr double kSmoothing = 0.7;
+constexpr double kMinStd = 0.02;
+constexpr double kUniformShare = 0.05;
+// Simulated annealing: the first step (coordinate units), the decay of step and temperature
+// per generation, the smallest step, and the first temperature as a share of the spread of
+// the first generation's badness (low: mostly downhill, as the planted failures favour).
+constexpr double kFirstStep = 0.2;
+constexpr double kDecay = 0.9;
+constexpr double kMinStep = 0.01;
+constexpr double kFirstTemperature = 0.01;
+
+// Where a generation's points come from.
+class ProposalPoints : public sampling::AttemptPoints {
+ public:
+  enum class Mode { kUniform, kSobol, kGaussian, kChain };
+
+  ProposalPoints(Mode mode, int dimension, uint64_t first_index)
+      : mode_(mode), dimension_(dimension), first_index_(first_index) {
+    if (mode == Mode::kSobol) design_ = std::make_unique<Design>(DesignKind::kSobol, dimension);
+  }
+
+  int dimension() const override { return dimension_; }
+
+  bool Point(uint64_t seed, uint64_t index, int64_t attempt, double* u) const override {
+    if (attempt >= kMaxProposalAttempts) return false;
+    geometry::Rng rng(seed ^ kProposalSalt ^ (static_cast<uint64_t>(attempt) * 0x9E3779B97F4A7C15ULL),
+                      index);
+    switch (mode_) {
+      case Mode::kSobol:
+        if (attempt == 0) {
+          design_->CalcPoint(seed, index, u);
+          return true;
+        }
+        break;
+      case Mode::kGaussian:
+        if (rng.Uniform01() >= kUniformShare) {
+          for (int j = 0; j < dimension_; ++j) {
+            const double x = geometry::MapTruncatedNormal(rng.Uniform01(), mean[j], std[j], 0, 1);
+            u[j] = std::isnan(x) ? rng.Uniform01() : std::min(x, 1.0 - 0x1.0p-53);
+          }
+          return true;
+        }
+        break;
+      case Mode::kChain: {
+        const std::vector<double>& centre = centres[index - first_index_];
+        for (int j = 0; j < dimension_; ++j) {
+          double x = centre[j] + step * geometry::MapNormal(rng.Uniform01());
+          x = std::fmod(std::abs(x), 2.0);  // reflect at 0 and 1
+          if (x >= 1) x = 2 - x;
+          u[j] = std::min(x, 1.0 - 0x1.0p-53);
+        }
+        return true;
+      }
+      case Mode::kUniform: break;
+    }
+    for (int j = 0; j < dimension_; ++j) u[j] = rng.Uniform01();
+    return true;
+  }
+
+  std::vector<double> mean, std;                // kGaussian
+  std::vector<std::vector<double>> centres;     // kChain: per episode slot
+  double step = kFirstStep;                     // kChain
+
+ private:
+  Mode mode_;
+  int dimension_;
+  uint64_t first_index_;
+  std::unique_ptr<Design> design_;
+};
+
+// How bad an episode was: failures before successes, then by score (lower is worse). Without
+// a score, failures are -1 and successes +1.
+double Badness(const harness::EpisodeRecord& record) {
+  const bool failed = record.result.outcome != "success";
+  if (record.result.score) return *record.result.score - (failed ? 1e9 : 0);
+  return failed ? -1 : 1;
+}
+
+bool HasScore(const std::vector<harness::EpisodeRecord>& records) {
+  return std::any_of(records.begin(), records.end(),
+                     [](const harness::EpisodeRecord& r) { return r.result.score.has_value(); });
+}
+
+// The best `batch.size()` records of everything evaluated (earlier and this generation).
+std::vector<harness::EpisodeRecord> BestSoFar(const std::vector<harness::EpisodeRecord>& earlier,
+                                              const std::vector<harness::EpisodeRecord>& batch) {
+  std::vector<const harness::EpisodeRecord*> all;
+  for (const auto& r : earlier) all.push_back(&r);
+  for (const auto& r : batch) all.push_back(&r);
+  const size_t keep = std::min(all.size(), batch.size());
+  std::partial_sort(all.begin(), all.begin() + static_cast<std::ptrdiff_t>(keep), all.end(),
+                    [](auto* a, auto* b) {
+                      const double ba = Badness(*a), bb = Badness(*b);
+                      return ba < bb || (ba == bb && a->index < b->index);
+                    });
+  std::vector<harness::EpisodeRecord> best;
+  best.reserve(keep);
+  for (size_t k = 0; k < keep; ++k) best.push_back(*all[k]);
+  return best;
+}
+
+// The cross-entropy update: mean and spread of the elite, smoothed.
+void UpdateCrossEntropy(const std::vector<harness::EpisodeRecord>& batch, int dimension,
+                        std::vector<double>* mean, std::vector<double>* std) {
+  std::vector<const harness::EpisodeRecord*> ranked;
+  for (const auto& r : batch) {
+    if (static_cast<int>(r.coordinates.size()) == dimension) ranked.push_back(&r);
+  }
+  const bool scored = HasScore(batch);
+  const auto failed = [](const harness::EpisodeRecord* r) { return r->result.outcome != "success"; };
+  const int64_t failures = std::count_if(ranked.begin(), ranked.end(), failed);
+  // Outcomes alone say nothing about where to go until something failed.
+  if (!scored && failures == 0) return;
+  std::stable_sort(ranked.begin(), ranked.end(), [](auto* a, auto* b) { return Badness(*a) < Badness(*b); });
+  size_t elite = static_cast<size_t>(std::ceil(kEliteFraction * static_cast<double>(batch.size())));
+  if (!scored) elite = static_cast<size_t>(failures);
+  elite = std::clamp<size_t>(elite, 1, ranked.size());
+  for (int j = 0; j < dimension; ++j) {
+    double m = 0;
+    for (size_t k = 0; k < elite; ++k) m += ranked[k]->coordinates[j];
+    m /= static_cast<double>(elite);
+    double v = 0;
+    for (size_t k = 0; k < elite; ++k) v += std::pow(ranked[k]->coordinates[j] - m, 2);
+    const double s = std::sqrt(v / static_cast<double>(elite));
+    (*mean)[j] = kSmoothing * m + (1 - kSmoothing) * (*mean)[j];
+    (*std)[j] = std::max(kMinStd, kSmoothing * s + (1 - kSmoothing) * (*std)[j]);
+  }
+}
+
+// One Metropolis step per chain: keep the proposal when it is no better with probability
+// exp(-(worse by) / temperature).
+void UpdateChains(const std::vector<harness::EpisodeRecord>& batch, uint64_t seed, int generation,
+                  double temperature, std::vector<std::vector<double>>* centres,
+                  std::vector<double>* badness) {
+  for (size_t c = 0; c < batch.size() && c < centres->size(); ++c) {
+    const harness::EpisodeRecord& r = batch[c];
+    if (r.coordinates.size() != (*centres)[c].size()) continue;  // drawn from the stream
+    const double b = Badness(r);
+    geometry::Rng rng(seed ^ kAcceptSalt, (static_cast<uint64_t>(generation) << 32) + c);
+    const bool accept = generation == 0 || b <= (*badness)[c] ||
+                        rng.Uniform01() < std::exp(-(b - (*badness)[c]) / temperature);
+    if (accept) {
+      (*centres)[c] = r.coordinates;
+      (*badness)[c] = b;
+    }
+  }
+}
+
+}  // namespace
+
+const char* StrategyName(Strategy strategy) {
+  switch (strategy) {
+    case Strategy::kRandom: return "random";
+    case Strategy::kCrossEntropy: return "ce";
+    case Strategy::kAnneal: return "anneal";
+  }
+  return "random";
+}
+
+std::vector<std::string> StrategyNames() { return {"random", "ce", "anneal"}; }
+
+bool ParseStrategy(const std::string& name, Strategy* strategy) {
+  for (Strategy s : {Strategy::kRandom, Strategy::kCrossEntropy, Strategy::kAnneal}) {
+    if (name == StrategyName(s)) {
+      *strategy = s;
+      return true;
+    }
+  }
+  return false;
+}
+
+int64_t DefaultBatch(int64_t budget) {
+  return std::min(budget, std::clamp<int64_t>(budget / 50, 20, 200));
+}
+
+SearchSummary RunSearch(const lang::CompiledProgram& program,
+                        const harness::ControllerFactory& factory, const SearchOptions& options) {
+  if (options.budget < 1) {
+    throw std::invalid_argument("the search budget must be at least 1 episode, got " +
+                                std::to_string(options.budget));
+  }
+  const int64_t batch = options.batch == 0 ? DefaultBatch(options.budget) : options.batch;
+  if (batch < 1) {
+    throw std::invalid_argument("the generation size must be at least 1, got " +
+                                std::to_string(batch));
+  }
+  SearchSummary summary;
+  summary.batch = batch;
+  summary.coordinates = sampling::DescribeCoordinates(program, options.run.sample);
+  const int d = static_cast<int>(summary.coordinates.size());
+  if (d == 0) {
+    throw NothingToSearch("this program draws nothing at random: every scene is the same, so "
+                          "there is nothing to search");
+  }
+  const uint64_t seed = options.run.seed;
+  std::vector<double> mean(d, 0.5), std(d, 1.0);  // wide: about uniform at first
+  std::vector<std::vector<double>> centres;
+  std::vector<double> badness;
+  double temperature = 1;
+  double step = kFirstStep;
+
+  int64_t done = 0;
+  for (int generation = 0; done < options.budget; ++generation) {
+    const int64_t count = std::min(batch, options.budget - done);
+    using Mode = ProposalPoints::Mode;
+    Mode mode = Mode::kUniform;
+    if (options.strategy != Strategy::kRandom) {
+      mode = generation == 0 ? Mode::kSobol
+             : options.strategy == Strategy::kCrossEntropy ? Mode::kGaussian
+                                                            : Mode::kChain;
+    }
+    ProposalPoints points(mode, d, static_cast<uint64_t>(done));
+    points.mean = mean;
+    points.std = std;
+    points.centres = centres;
+    points.step = step;
+    if (mode == Mode::kChain) points.centres.resize(count, std::vector<double>(d, 0.5));
+
+    harness::RunOptions run = options.run;
+    run.sample.points = &points;
+    run.start = static_cast<uint64_t>(done);
+    run.count = count;
+    const nlohmann::json tag = {{"strategy", StrategyName(options.strategy)},
+                                {"generation", generation}};
+    run.on_record = [&](const harness::EpisodeRecord& record) {
+      harness::EpisodeRecord tagged = record;
+      tagged.search = tag;
+      if (options.on_record) options.on_record(tagged);
+    };
+    harness::RunSummary ran = harness::RunEpisodes(program, factory, run);
+    summary.threads = ran.threads;
+    for (harness::EpisodeRecord& record : ran.records) {
+      record.search = tag;
+      if (record.result.outcome != "success") {
+        ++summary.failures;
+        if (summary.first_failure < 0) {
+          summary.first_failure = static_cast<int64_t>(record.index) + 1;
+        }
+      }
+    }
+
+    if (options.strategy == Strategy::kCrossEntropy) {
+      UpdateCrossEntropy(BestSoFar(summary.records, ran.records), d, &mean, &std);
+    } else if (options.strategy == Strategy::kAnneal) {
+      if (generation == 0) {
+        centres.assign(batch, std::vector<double>(d, 0.5));
+        badness.assign(batch, INFINITY);
+        // The first temperature: the spread of the first generation's badness.
+        double sum = 0, sum2 = 0;
+        for (const auto& r : ran.records) {
+          sum += Badness(r);
+          sum2 += Badness(r) * Badness(r);
+        }
+        const double n = static_cast<double>(ran.records.size());
+        const double spread = std::sqrt(std::max(0.0, sum2 / n - (sum / n) * (sum / n)));
+        temperature = kFirstTemperature * (spread > 0 ? spread : 1);
+      } else {
+        temperature *= kDecay;
+        step = std::max(kMinStep, step * kDecay);
+      }
+      UpdateChains(ran.records, seed, generation, temperature, &centres, &badness);
+    }
+    for (auto& record : ran.records) summary.records.push_back(std::move(record));
+    done += count;
+    summary.generations = generation + 1;
+  }
+  if (options.strategy == Strategy::kCrossEntropy) {
+    summary.proposal_mean = mean;
+    summary.proposal_std = std;
+  }
+  return summary;
+}
+
+}  // namespace prs::search
