@@ -9,6 +9,7 @@
 #include "cli/commands.h"
 #include "cli/common.h"
 #include "cli/design_option.h"
+#include "search/like.h"
 #include "cli/interrupt.h"
 #include "cli/progress.h"
 #include "output/line_writer.h"
@@ -22,6 +23,8 @@ struct SampleArgs {
   ScenarioArgs scenario;
   SamplingArgs sampling;
   DesignArgs design;
+  std::string like;     // --like RESULTS.jsonl
+  std::string outcome;  // --outcome NAME (with --like)
   SceneRangeArgs range;
   std::string output;  // empty or "-": stdout
   bool quiet = false;
@@ -70,6 +73,9 @@ class SceneWriterRun {
       sampling::BatchOptions options = MakeBatchOptions();
       if (!PrepareDesign(args_.design, program_, args_.range, options.sample, &design_)) {
         return kExitUsage;
+      }
+      if (!args_.like.empty()) {
+        if (!PrepareLike(options.sample)) return kExitUsage;
       }
       sampling::BatchCallbacks callbacks = MakeCallbacks();
       progress_.Attach(options, callbacks);
@@ -121,6 +127,34 @@ class SceneWriterRun {
     return callbacks;
   }
 
+  // --like: the proposal fitted to the failures of the records file.
+  bool PrepareLike(sampling::SampleOptions& sample) {
+    const auto lines = ReadLines(args_.like);
+    if (!lines) return false;
+    const int dimension = static_cast<int>(sampling::DescribeCoordinates(program_, sample).size());
+    try {
+      if (dimension == 0) {
+        throw std::runtime_error("--like: this program draws nothing at random, so every scene "
+                                 "is like every other");
+      }
+      const search::FailureSet failures =
+          search::ReadFailures(*lines, args_.like, args_.outcome, search::CalcSpecHash(program_),
+                               dimension);
+      like_ = std::make_unique<search::GaussianPoints>(search::FitLike(failures));
+      if (!args_.quiet) {
+        PrintNote(fmt::format("drawing scenes like the {} of {}",
+                              FormatCount(static_cast<int64_t>(failures.coordinates.size()),
+                                          args_.outcome.empty() ? "failure" : args_.outcome),
+                              args_.like));
+      }
+    } catch (const std::runtime_error& error) {
+      PrintError(error.what());
+      return false;
+    }
+    sample.points = like_.get();
+    return true;
+  }
+
   // The scenes before the failing one stay written (in OUT.partial for a file).
   int ReportFailure(const lang::ScenarioError& error) {
     progress_.Erase();
@@ -167,6 +201,7 @@ class SceneWriterRun {
   ProgressBar progress_;
   int64_t done_ = 0;
   std::unique_ptr<search::Design> design_;
+  std::unique_ptr<search::GaussianPoints> like_;
 };
 
 int RunSample(const SampleArgs& args) {
@@ -203,6 +238,17 @@ CommandRunner ConfigureSampleCommand(CLI::App& command) {
       ->check(NonEmptyPath());
   AddSamplingOptions(command, args->sampling);
   AddDesignOption(command, args->design);
+  CLI::Option* like =
+      command
+          .add_option("--like", args->like,
+                      "draw scenes like the failing episodes of RESULTS (prs search -o, or prs "
+                      "test --design -o): each still satisfies the whole program")
+          ->type_name("RESULTS")
+          ->check(NonEmptyPath())
+          ->excludes(command.get_option("--design"));
+  command.add_option("--outcome", args->outcome, "with --like: only episodes with this outcome")
+      ->type_name("NAME")
+      ->needs(like);
   command.add_flag("-q,--quiet", args->quiet, "no summary on stderr");
   return [args] { return RunSample(*args); };
 }

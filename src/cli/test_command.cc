@@ -13,6 +13,7 @@
 #include "cli/common.h"
 #include "cli/controller_options.h"
 #include "cli/design_option.h"
+#include "search/like.h"
 #include "cli/failure_pictures.h"
 #include "cli/interrupt.h"
 #include "cli/progress.h"
@@ -101,6 +102,7 @@ int RunAndReport(const lang::CompiledProgram& program, const harness::Controller
   const auto begin = std::chrono::steady_clock::now();
   try {
     if (!PrepareDesign(args.design, program, args.range, options.sample, &design)) return kExitUsage;
+    options.spec_hash = search::CalcSpecHash(program);
     const harness::RunSummary summary = harness::RunEpisodes(program, factory, options);
     if (records) records->Commit();
     progress.Erase();

@@ -58,6 +58,9 @@ struct EpisodeRecord {
   std::string regenerate;   // failures only: the `prs sample` command that rewrites the scene
   /// The scene coordinates the scene was drawn at (designs and searches), else empty.
   std::vector<double> coordinates;
+  /// The program's fingerprint (search::CalcSpecHash) when `coordinates` are set, so that the
+  /// coordinates are never read back against another program.
+  std::string spec;
   /// Set by searches: {"strategy": ..., "generation": ...} (docs/search.md), else null.
   nlohmann::json search;
 };
@@ -84,6 +87,8 @@ struct RunOptions {
   std::function<void(const EpisodeRecord&)> on_record;
   /// Polled between episodes; once true the run stops with sampling::BatchCancelled.
   const std::atomic<bool>* cancel = nullptr;
+  /// Copied into each record drawn at scene coordinates (EpisodeRecord::spec).
+  std::string spec_hash;
 };
 
 struct RunSummary {

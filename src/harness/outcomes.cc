@@ -47,6 +47,7 @@ std::string FormatRecordJson(const EpisodeRecord& record) {
   line["extra"] = nlohmann::ordered_json::parse(
       record.result.extra.dump(-1, ' ', false, nlohmann::json::error_handler_t::replace));
   if (!record.coordinates.empty()) line["coordinates"] = record.coordinates;
+  if (!record.spec.empty()) line["spec"] = record.spec;
   if (!record.search.is_null()) line["search"] = record.search;
   if (!record.regenerate.empty()) line["regenerate"] = record.regenerate;
   if (!record.saved_scene.empty()) line["saved_scene"] = record.saved_scene;

@@ -9,16 +9,12 @@
 
 #include "geometry/random.h"
 #include "search/design.h"
+#include "search/like.h"
 
 namespace prs::search {
 namespace {
 
-// Proposals draw from streams of their own, never from a scene's stream (seed, index).
-constexpr uint64_t kProposalSalt = 0x5EA2C4E1B0F3A977ULL;
 constexpr uint64_t kAcceptSalt = 0x3C6EF372FE94F82BULL;
-// Proposed points a scene may reject before its attempts read the stream alone (so a
-// proposal stuck where every attempt is rejected still finishes its scenes, exactly).
-constexpr int64_t kMaxProposalAttempts = 100;
 
 // Cross-entropy method (Rubinstein & Kroese), elitist: the elite is the best fraction of
 // everything evaluated so far (as many as one generation holds), so a good point found early
@@ -27,7 +23,6 @@ constexpr int64_t kMaxProposalAttempts = 100;
 // loses sight of the whole space. Tuned on the planted failures (docs/benchmarks.md).
 constexpr double kEliteFraction = 0.2;
 constexpr double kSmoothing = 0.7;
-constexpr double kMinStd = 0.02;
 constexpr double kUniformShare = 0.05;
 // Simulated annealing: the first step (coordinate units), the decay of step and temperature
 // per generation, the smallest step, and the first temperature as a share of the spread of
@@ -42,9 +37,11 @@ class ProposalPoints : public sampling::AttemptPoints {
  public:
   enum class Mode { kUniform, kSobol, kGaussian, kChain };
 
-  ProposalPoints(Mode mode, int dimension, uint64_t first_index)
+  ProposalPoints(Mode mode, int dimension, uint64_t first_index, const std::vector<double>& mean,
+                 const std::vector<double>& std)
       : mode_(mode), dimension_(dimension), first_index_(first_index) {
     if (mode == Mode::kSobol) design_ = std::make_unique<Design>(DesignKind::kSobol, dimension);
+    if (mode == Mode::kGaussian) gaussian_ = std::make_unique<GaussianPoints>(mean, std, kUniformShare);
   }
 
   int dimension() const override { return dimension_; }
@@ -61,14 +58,7 @@ class ProposalPoints : public sampling::AttemptPoints {
         }
         break;
       case Mode::kGaussian:
-        if (rng.Uniform01() >= kUniformShare) {
-          for (int j = 0; j < dimension_; ++j) {
-            const double x = geometry::MapTruncatedNormal(rng.Uniform01(), mean[j], std[j], 0, 1);
-            u[j] = std::isnan(x) ? rng.Uniform01() : std::min(x, 1.0 - 0x1.0p-53);
-          }
-          return true;
-        }
-        break;
+        return gaussian_->Point(seed, index, attempt, u);
       case Mode::kChain: {
         const std::vector<double>& centre = centres[index - first_index_];
         for (int j = 0; j < dimension_; ++j) {
@@ -85,7 +75,6 @@ class ProposalPoints : public sampling::AttemptPoints {
     return true;
   }
 
-  std::vector<double> mean, std;                // kGaussian
   std::vector<std::vector<double>> centres;     // kChain: per episode slot
   double step = kFirstStep;                     // kChain
 
@@ -94,6 +83,7 @@ class ProposalPoints : public sampling::AttemptPoints {
   int dimension_;
   uint64_t first_index_;
   std::unique_ptr<Design> design_;
+  std::unique_ptr<GaussianPoints> gaussian_;
 };
 
 // How bad an episode was: failures before successes, then by score (lower is worse). Without
@@ -151,7 +141,7 @@ void UpdateCrossEntropy(const std::vector<harness::EpisodeRecord>& batch, int di
     for (size_t k = 0; k < elite; ++k) v += std::pow(ranked[k]->coordinates[j] - m, 2);
     const double s = std::sqrt(v / static_cast<double>(elite));
     (*mean)[j] = kSmoothing * m + (1 - kSmoothing) * (*mean)[j];
-    (*std)[j] = std::max(kMinStd, kSmoothing * s + (1 - kSmoothing) * (*std)[j]);
+    (*std)[j] = std::max(kMinProposalStd, kSmoothing * s + (1 - kSmoothing) * (*std)[j]);
   }
 }
 
@@ -221,6 +211,7 @@ SearchSummary RunSearch(const lang::CompiledProgram& program,
                           "there is nothing to search");
   }
   const uint64_t seed = options.run.seed;
+  const std::string spec_hash = CalcSpecHash(program);
   std::vector<double> mean(d, 0.5), std(d, 1.0);  // wide: about uniform at first
   std::vector<std::vector<double>> centres;
   std::vector<double> badness;
@@ -237,15 +228,14 @@ SearchSummary RunSearch(const lang::CompiledProgram& program,
              : options.strategy == Strategy::kCrossEntropy ? Mode::kGaussian
                                                             : Mode::kChain;
     }
-    ProposalPoints points(mode, d, static_cast<uint64_t>(done));
-    points.mean = mean;
-    points.std = std;
+    ProposalPoints points(mode, d, static_cast<uint64_t>(done), mean, std);
     points.centres = centres;
     points.step = step;
     if (mode == Mode::kChain) points.centres.resize(count, std::vector<double>(d, 0.5));
 
     harness::RunOptions run = options.run;
     run.sample.points = &points;
+    run.spec_hash = spec_hash;
     run.start = static_cast<uint64_t>(done);
     run.count = count;
     const nlohmann::json tag = {{"strategy", StrategyName(options.strategy)},

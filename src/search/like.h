@@ -1,0 +1,61 @@
+// More scenes like the failures (docs/search.md, "More scenes like the failures"): the scene
+// coordinates of failing episodes, read back from records, fitted by a proposal over the unit
+// cube; scenes drawn at its points still go through the exact sampler, so each satisfies the
+// whole program. Also the program fingerprint that ties records to the program they came from.
+#pragma once
+
+#include <cstdint>
+#include <string>
+#include <vector>
+
+#include "lang/lang.h"
+#include "sampling/sampler.h"
+
+namespace prs::search {
+
+/// A fingerprint of the program's meaning for scene coordinates: FNV-1a over every source
+/// file's text (in load order) and the -p overrides. Hex, 16 digits.
+std::string CalcSpecHash(const lang::CompiledProgram& program);
+
+/// Proposals draw from streams of their own, apart from every scene's stream (seed, index).
+inline constexpr uint64_t kProposalSalt = 0x5EA2C4E1B0F3A977ULL;
+/// Proposed points a scene may reject before its attempts read the stream alone (so a
+/// proposal stuck where every attempt is rejected still finishes its scenes, exactly).
+inline constexpr int64_t kMaxProposalAttempts = 100;
+/// The narrowest a proposal gets, in coordinate units.
+inline constexpr double kMinProposalStd = 0.02;
+
+/// Independent truncated normals per coordinate on [0, 1), mixed with a share of uniform
+/// points; attempts after the 100th read the stream (so a scene always finishes, exactly).
+/// The cross-entropy method's proposal, and --like's.
+class GaussianPoints : public sampling::AttemptPoints {
+ public:
+  GaussianPoints(std::vector<double> mean, std::vector<double> std, double uniform_share);
+  int dimension() const override { return static_cast<int>(mean_.size()); }
+  bool Point(uint64_t seed, uint64_t index, int64_t attempt, double* u) const override;
+
+ private:
+  std::vector<double> mean_, std_;
+  double uniform_share_;
+};
+
+/// The coordinates of the failing records of a results file, checked against the program.
+struct FailureSet {
+  std::vector<std::vector<double>> coordinates;  // one per selected record
+  int64_t records = 0;                           // lines read
+};
+
+/// Reads records (JSON Lines from `prs search -o` or `prs test --design -o`) and keeps the
+/// coordinates of those whose outcome is `outcome`, or any failure when `outcome` is empty.
+/// Throws std::runtime_error with a message a user can act on: a line that is not a record,
+/// records without coordinates or spec hash, records of another program (hash or number of
+/// coordinates), or no record with that outcome (naming the outcomes found). `path` names
+/// the file in messages.
+FailureSet ReadFailures(const std::vector<std::string>& lines, const std::string& path,
+                        const std::string& outcome, const std::string& spec_hash, int dimension);
+
+/// The proposal of --like: per coordinate, the failures' mean and standard deviation (at
+/// least 0.02), with 5 % uniform points.
+GaussianPoints FitLike(const FailureSet& failures);
+
+}  // namespace prs::search
