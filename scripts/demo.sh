@@ -55,6 +55,8 @@ Next, try:
    $prs test $spec --exec 'python3 examples/controllers/reach_check.py' -n 100 -s 1
                                 # your own controller: scene JSON in, outcome out (docs/harness.md)
    $prs render $spec --view camera:Camera -o rgb.png   # what the robot's camera sees
+   $prs search $spec --controller planted-1-permille --budget 1000 -o found.jsonl
+                                # search for failures instead of sampling blindly (docs/search.md)
    docs/language.md (the language), docs/case_study.md (the failures and a fix), docs/cli.md
 
 demo: done in $((SECONDS - started)) s

@@ -40,7 +40,8 @@ search::SearchOptions MakeSearchOptions(const SearchArgs& args, const std::atomi
   options.run.sample = MakeSampleOptions(args.sampling);
   options.run.seed = args.sampling.seed;
   options.run.threads = args.sampling.threads;
-  options.run.scenario_args = MakeScenarioWords(args.scenario, args.sampling);
+  // No regenerate command: a searched scene comes from a proposed point, not from (seed,
+  // index); its record carries the point (coordinates) instead.
   options.run.save_failures_dir = args.save_failures_dir;
   options.run.cancel = &cancel;
   return options;

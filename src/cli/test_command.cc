@@ -42,6 +42,13 @@ harness::RunOptions MakeRunOptions(const TestArgs& args, const std::atomic<bool>
   options.count = args.range.count;
   options.threads = args.sampling.threads;
   options.scenario_args = MakeScenarioWords(args.scenario, args.sampling);
+  // A Sobol or Halton scene is (seed, index, design): `prs sample --design` rewrites it. A
+  // lattice scene depends on the lattice's size too, so no one-scene command rewrites it.
+  if (args.design.name == "sobol" || args.design.name == "halton") {
+    options.scenario_args.insert(options.scenario_args.end(), {"--design", args.design.name});
+  } else if (args.design.name == "lattice") {
+    options.scenario_args.clear();
+  }
   options.save_failures_dir = args.save_failures_dir;
   // Pictures are drawn after the run from the saved JSON (failure_pictures.h), so no
   // FailureHook is needed here.

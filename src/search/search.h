@@ -36,7 +36,8 @@ struct SearchOptions {
   /// Episodes per generation (each generation runs as one batch on all threads); 0 picks
   /// budget / 50 within [20, 200] (at most the budget).
   int64_t batch = 0;
-  /// Seed, threads, sampling options, scenario_args, save_failures_dir, on_failure, cancel.
+  /// Seed, threads, sampling options, save_failures_dir, on_failure, cancel (scenario_args
+  /// should stay empty: no `prs sample` command rewrites a searched scene).
   /// `start`, `count`, `on_record` and `sample.points` are set by the search.
   harness::RunOptions run;
   /// Called on the calling thread with each record, in evaluation order, as its generation

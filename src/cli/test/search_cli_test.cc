@@ -86,7 +86,35 @@ TEST_F(PrsTest, DesignsGiveOtherValidScenesReproducibly) {
   const Result t = Run({"test", Example("table_cube.prs"), "--controller", "planted-1-percent",
                         "-n", "20", "--design", "halton", "-o", (dir_ / "t.jsonl").string()});
   ASSERT_EQ(t.exit_code, 0) << t.err;
-  EXPECT_EQ(ReadJsonLines(dir_ / "t.jsonl")[0]["coordinates"].size(), 11u);
+  const std::vector<json> records = ReadJsonLines(dir_ / "t.jsonl");
+  EXPECT_EQ(records[0]["coordinates"].size(), 11u);
+  // A failure's regenerate command rewrites the scene the design gave it.
+  const Result s = Run({"search", Example("table_cube.prs"), "--controller", "planted-1-percent",
+                        "--budget", "300", "-s", "1", "-o", (dir_ / "s.jsonl").string()});
+  ASSERT_EQ(s.exit_code, 0) << s.err;
+  for (const json& record : ReadJsonLines(dir_ / "s.jsonl")) {
+    EXPECT_FALSE(record.contains("regenerate")) << "a searched scene is not (seed, index)'s";
+  }
+  const Result many = Run({"test", Example("table_cube.prs"), "--controller", "planted-1-percent",
+                           "-n", "600", "-s", "2", "--design", "sobol", "-o",
+                           (dir_ / "m.jsonl").string()});
+  ASSERT_EQ(many.exit_code, 0) << many.err;
+  int checked = 0;
+  for (const json& record : ReadJsonLines(dir_ / "m.jsonl")) {
+    if (!record.contains("regenerate")) continue;
+    const std::string command = record["regenerate"];
+    EXPECT_NE(command.find("--design sobol"), std::string::npos) << command;
+    const Result again = Run({"sample", Example("table_cube.prs"), "-s", "2", "--design", "sobol",
+                              "--index", std::to_string(record["index"].get<int>())});
+    ASSERT_EQ(again.exit_code, 0);
+    const json scene = json::parse(again.out);
+    const Result planted = Run({"test", Example("table_cube.prs"), "--controller",
+                                "planted-1-percent", "-s", "2", "--design", "sobol", "--start",
+                                std::to_string(record["index"].get<int>()), "-n", "1"});
+    EXPECT_NE(planted.out.find("planted-failure"), std::string::npos) << scene.dump();
+    ++checked;
+  }
+  EXPECT_GT(checked, 0);
 }
 
 TEST_F(PrsTest, CheckListsTheSceneCoordinates) {
