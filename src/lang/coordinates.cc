@@ -25,7 +25,7 @@ std::string Interpreter::NameCoordinate(const char* draw, SourceSpan span, int o
 
 const double* Interpreter::TakeCoordinates(int k, const char* draw, SourceSpan span, int object) {
   const CoordinateInput& in = options_.coordinates;
-  if (in.log && k > 0) {
+  if (in.log && k > 0 && in.log->size() < kMaxLoggedCoordinates) {
     const std::string name = NameCoordinate(draw, span, object);
     for (int j = 0; j < k; ++j) {
       in.log->push_back({k > 1 ? name + "[" + std::to_string(j) + "]" : name, draw, span});

@@ -85,11 +85,16 @@ struct CoordinateInfo {
 /// the attempt makes them, each draw k numbers at once (1 for a number, one per dimension for
 /// a position); the first draw that does not fit in what is left, and every draw after it,
 /// reads the Rng stream instead. With no values every draw reads the stream (the default).
+/// The most coordinates a log records (CoordinateInput::log): a program may draw a million
+/// numbers in a loop, and naming them all would only cost time and memory.
+inline constexpr size_t kMaxLoggedCoordinates = 1024;
+
 struct CoordinateInput {
   const double* values = nullptr;  // the attempt's point u, each in [0, 1)
   int size = 0;
   /// When set, every draw appends one entry per number it reads (as if `size` were
-  /// unlimited), whether the numbers came from `values` or the stream.
+  /// unlimited), whether the numbers came from `values` or the stream, up to
+  /// kMaxLoggedCoordinates entries.
   std::vector<CoordinateInfo>* log = nullptr;
 };
 

@@ -95,7 +95,7 @@ class SceneSampler {
 /// `probe_attempts` attempts (scene 0 of seed 0 and its retries, on the stream) drew, at most
 /// kMaxCoordinates. Programs whose draws vary (random loops, resampling) may draw more in
 /// other attempts; those draws read the stream. Throws lang::ScenarioError for program errors.
-inline constexpr int kMaxCoordinates = 1024;
+inline constexpr int kMaxCoordinates = static_cast<int>(lang::kMaxLoggedCoordinates);
 std::vector<lang::CoordinateInfo> DescribeCoordinates(const lang::CompiledProgram& program,
                                                       const SampleOptions& options = {},
                                                       int probe_attempts = 64);

@@ -194,6 +194,19 @@ TEST(SceneCoordinatesTest, NamesComeFromTheProgram) {
   EXPECT_EQ(described[1].name, "Normal at widths.prs:3:5");
 }
 
+TEST(SceneCoordinatesTest, LongDrawSequencesAreCappedAndReadTheStreamPastThePoint) {
+  const auto program = CompileOrDie(
+      "total = 0\nfor i in range(3000):\n    total = total + Range(0, 1)\nrequire total > 0\n",
+      "examples/long.prs");
+  const auto coordinates = sampling::DescribeCoordinates(*program);
+  ASSERT_EQ(coordinates.size(), static_cast<size_t>(sampling::kMaxCoordinates));
+  const IidPoints points(sampling::kMaxCoordinates);
+  sampling::SampleOptions options;
+  options.points = &points;
+  const auto scene = sampling::SampleScene(*program, 1, 0, options);
+  EXPECT_EQ(scene.coordinates.size(), static_cast<size_t>(sampling::kMaxCoordinates));
+}
+
 TEST(SceneCoordinatesTest, DistributionsMapTheirCoordinateExactly) {
   // Range, Normal and TruncatedNormal at a point: the quantiles they should be.
   const auto program = CompileOrDie(
