@@ -30,5 +30,6 @@ CommandRunner ConfigureExportCommand(CLI::App& command);
 CommandRunner ConfigureRenderCommand(CLI::App& command);
 CommandRunner ConfigureTestCommand(CLI::App& command);
 CommandRunner ConfigureSearchCommand(CLI::App& command);
+CommandRunner ConfigureReportCommand(CLI::App& command);
 
 }  // namespace prs::cli

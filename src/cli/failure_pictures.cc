@@ -4,11 +4,13 @@
 
 #include <fmt/format.h>
 
+#include <algorithm>
 #include <filesystem>
 #include <fstream>
 #include <memory>
 #include <stdexcept>
 
+#include "cli/common.h"
 #include "render/render.h"
 #include "render/scene_input.h"
 
@@ -34,6 +36,24 @@ int64_t DrawFailurePictures(const std::vector<harness::EpisodeRecord>& records) 
     ++drawn;
   }
   return drawn;
+}
+
+int ReportSavedFailures(const std::vector<harness::EpisodeRecord>& records,
+                        const std::string& dir, bool quiet) {
+  const int64_t saved = std::count_if(records.begin(), records.end(),
+                                      [](const auto& record) { return !record.saved_scene.empty(); });
+  int64_t drawn = 0;
+  try {
+    drawn = DrawFailurePictures(records);
+  } catch (const std::exception& error) {
+    PrintError(std::string("cannot draw the failing scenes: ") + error.what());
+    return kExitScenarioError;
+  }
+  if (!quiet && saved > 0) {
+    PrintNote(fmt::format("{} saved in {} ({})", FormatCount(saved, "failing scene"), dir,
+                          drawn == saved ? "JSON and PNG" : "JSON"));
+  }
+  return kExitSuccess;
 }
 
 }  // namespace prs::cli

@@ -3,6 +3,7 @@
 #pragma once
 
 #include <cstdint>
+#include <string>
 #include <vector>
 
 #include "harness/harness.h"
@@ -14,5 +15,11 @@ namespace prs::cli {
 /// Returns how many were drawn. Throws std::runtime_error when no
 /// OpenGL context can be made or a file cannot be read or written.
 int64_t DrawFailurePictures(const std::vector<harness::EpisodeRecord>& records);
+
+/// After `prs test` or `prs search` with --save-failures DIR: draws the pictures and says how
+/// many failing scenes were saved where. Returns the exit code (kExitScenarioError when the
+/// pictures cannot be drawn, after saying so).
+int ReportSavedFailures(const std::vector<harness::EpisodeRecord>& records,
+                        const std::string& dir, bool quiet);
 
 }  // namespace prs::cli

@@ -24,6 +24,7 @@ const std::vector<Command>& CommandTable() {
       {"render", "draw scenes as PNG pictures (offscreen, no display needed)", ConfigureRenderCommand},
       {"test", "run a controller in sampled scenes, tabulate outcomes", ConfigureTestCommand},
       {"search", "search for scenes where a controller fails (ce, anneal)", ConfigureSearchCommand},
+      {"report", "a failure report from episode records: what separates failures", ConfigureReportCommand},
   };
   return kCommands;
 }

@@ -11,6 +11,7 @@
 #include "cli/commands.h"
 #include "cli/common.h"
 #include "cli/controller_options.h"
+#include "cli/failure_pictures.h"
 #include "cli/interrupt.h"
 #include "cli/progress.h"
 #include "cli/search_report.h"
@@ -67,7 +68,9 @@ int RunAndReport(const lang::CompiledProgram& program, const harness::Controller
                 fmt::format("; {} generations of {} on {}", summary.generations, summary.batch,
                             FormatCount(summary.threads, "thread")));
     }
-    return kExitSuccess;
+    return args.save_failures_dir.empty()
+               ? kExitSuccess
+               : ReportSavedFailures(summary.records, args.save_failures_dir, args.quiet);
   } catch (const search::NothingToSearch& error) {
     progress.Erase();
     PrintError(std::string(error.what()) + " (prs check --coordinates lists what is random)");

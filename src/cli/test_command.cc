@@ -76,25 +76,6 @@ bool IsEveryOutcome(const std::vector<harness::EpisodeRecord>& records, const st
   });
 }
 
-// After the table: a picture beside each saved failing scene, and where they are.
-int ReportSavedFailures(const harness::RunSummary& summary, const TestArgs& args) {
-  const int64_t saved =
-      std::count_if(summary.records.begin(), summary.records.end(),
-                    [](const auto& record) { return !record.saved_scene.empty(); });
-  int64_t drawn = 0;
-  try {
-    drawn = DrawFailurePictures(summary.records);
-  } catch (const std::exception& error) {
-    PrintError(std::string("cannot draw the failing scenes: ") + error.what());
-    return kExitScenarioError;
-  }
-  if (!args.quiet && saved > 0) {
-    PrintNote(fmt::format("{} saved in {} ({})", FormatCount(saved, "failing scene"),
-                          args.save_failures_dir, drawn == saved ? "JSON and PNG" : "JSON"));
-  }
-  return kExitSuccess;
-}
-
 // Runs the episodes, writing each record as it arrives; returns the exit code.
 int RunAndReport(const lang::CompiledProgram& program, const harness::ControllerFactory& factory,
                  const TestArgs& args, output::LineWriter* records, InterruptWatch& interrupt) {
@@ -120,7 +101,9 @@ int RunAndReport(const lang::CompiledProgram& program, const harness::Controller
     if (IsEveryOutcome(summary.records, "exit-127")) {
       PrintNote("every episode exited with code 127: the shell did not find the --exec command");
     }
-    return args.save_failures_dir.empty() ? kExitSuccess : ReportSavedFailures(summary, args);
+    return args.save_failures_dir.empty()
+               ? kExitSuccess
+               : ReportSavedFailures(summary.records, args.save_failures_dir, args.quiet);
   } catch (const lang::ScenarioError& error) {
     progress.Erase();
     return ReportScenarioError(error, program.sources);

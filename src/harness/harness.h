@@ -63,7 +63,13 @@ struct EpisodeRecord {
   std::string spec;
   /// Set by searches: {"strategy": ..., "generation": ...} (docs/search.md), else null.
   nlohmann::json search;
+  /// The scene's features for failure reports (docs/search.md, "Failure maps"): per object,
+  /// "NAME.x", "NAME.y", "NAME.z" (metres) and "NAME.yaw" (radians), in scene order.
+  std::vector<std::pair<std::string, double>> features;
 };
+
+/// The features of EpisodeRecord::features for one scene.
+std::vector<std::pair<std::string, double>> CalcSceneFeatures(const lang::Scene& scene);
 
 /// Called for each failing episode on the worker thread that ran it, after the scene was
 /// saved as `path_stem` + ".json": e.g. to render `path_stem` + ".png". It must be
@@ -117,8 +123,8 @@ struct OutcomeRow {
 std::vector<OutcomeRow> TabulateOutcomes(const std::vector<EpisodeRecord>& records);
 
 /// One JSON Lines record: seed, index, outcome, detail, score (when reported), wall_s, extra,
-/// coordinates and search (when set), and for failures regenerate (and saved_scene when
-/// saved). No trailing newline.
+/// coordinates, spec and search (when set), features, and for failures regenerate (and
+/// saved_scene when saved). No trailing newline.
 std::string FormatRecordJson(const EpisodeRecord& record);
 
 /// `prs sample ARGS... -s S --start I -n 1`, each argument quoted for a POSIX shell when it

@@ -1,5 +1,6 @@
 // Outcome names, the outcome table (the paper's Table III) and the JSON Lines records.
 #include <algorithm>
+#include <cmath>
 #include <map>
 
 #include "harness/harness.h"
@@ -49,10 +50,31 @@ std::string FormatRecordJson(const EpisodeRecord& record) {
   if (!record.coordinates.empty()) line["coordinates"] = record.coordinates;
   if (!record.spec.empty()) line["spec"] = record.spec;
   if (!record.search.is_null()) line["search"] = record.search;
+  if (!record.features.empty()) {
+    nlohmann::ordered_json features = nlohmann::ordered_json::object();
+    for (const auto& [name, value] : record.features) features[name] = value;
+    line["features"] = std::move(features);
+  }
   if (!record.regenerate.empty()) line["regenerate"] = record.regenerate;
   if (!record.saved_scene.empty()) line["saved_scene"] = record.saved_scene;
   // Controllers may send any bytes; invalid UTF-8 becomes U+FFFD instead of an exception.
   return line.dump(-1, ' ', false, nlohmann::ordered_json::error_handler_t::replace);
+}
+
+std::vector<std::pair<std::string, double>> CalcSceneFeatures(const lang::Scene& scene) {
+  std::vector<std::pair<std::string, double>> features;
+  features.reserve(4 * scene.objects.size());
+  for (size_t i = 0; i < scene.objects.size(); ++i) {
+    const lang::SceneObject& o = scene.objects[i];
+    const std::string name = o.DisplayName(static_cast<int>(i));
+    const Eigen::Matrix3d R_WO = o.R_WO.toRotationMatrix();
+    features.emplace_back(name + ".x", o.p_WO.x());
+    features.emplace_back(name + ".y", o.p_WO.y());
+    features.emplace_back(name + ".z", o.p_WO.z());
+    // The heading of the object's x axis in the world's xy plane.
+    features.emplace_back(name + ".yaw", std::atan2(R_WO(1, 0), R_WO(0, 0)));
+  }
+  return features;
 }
 
 std::string QuoteForShell(const std::string& word) {

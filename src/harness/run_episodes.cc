@@ -83,6 +83,7 @@ class EpisodeRunner {
     record.seed = scene.seed;
     record.index = scene.index;
     record.coordinates = scene.coordinates;
+    record.features = CalcSceneFeatures(scene.scene);
     if (!record.coordinates.empty()) record.spec = options_.spec_hash;
     std::unique_ptr<Controller> controller = pool_.Take();
     const auto begin = std::chrono::steady_clock::now();

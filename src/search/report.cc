@@ -1,0 +1,513 @@
+// The failure report: feature table, one-threshold splits, depth-2 and depth-3 trees (failure
+// modes are the failure-rich leaves) and the Markdown/SVG that show them. The statistics are
+// small and written here (the best split per feature by information gain): a library such as
+// mlpack would bring Armadillo and far more than these lines; Python users have scikit-learn
+// for deeper models.
+#include "search/report.h"
+
+#include <algorithm>
+#include <cmath>
+#include <map>
+#include <numeric>
+#include <stdexcept>
+
+#include <fmt/format.h>
+#include <nlohmann/json.hpp>
+
+
+namespace prs::search {
+namespace {
+
+double Entropy(int64_t k, int64_t n) {
+  if (n == 0 || k == 0 || k == n) return 0;
+  const double p = static_cast<double>(k) / static_cast<double>(n);
+  return -p * std::log2(p) - (1 - p) * std::log2(1 - p);
+}
+
+double Rate(int64_t k, int64_t n) { return n > 0 ? static_cast<double>(k) / n : 0.0; }
+
+// The best split of feature f over the records in `subset`, or nullopt.
+std::optional<Split> BestSplit(const FeatureTable& table, const std::vector<bool>& failed,
+                               const std::vector<size_t>& subset, int f, int64_t min_leaf) {
+  std::vector<std::pair<double, bool>> values;
+  values.reserve(subset.size());
+  for (size_t r : subset) {
+    const double v = table.rows[r][f];
+    if (!std::isnan(v)) values.emplace_back(v, failed[r]);
+  }
+  const int64_t n = static_cast<int64_t>(values.size());
+  if (n < 2 * min_leaf) return std::nullopt;
+  std::sort(values.begin(), values.end());
+  int64_t total_failures = 0;
+  for (const auto& v : values) total_failures += v.second;
+  const double parent = Entropy(total_failures, n);
+  std::optional<Split> best;
+  int64_t below = 0, failures_below = 0;
+  for (int64_t i = 0; i + 1 < n; ++i) {
+    ++below;
+    failures_below += values[i].second;
+    if (values[i].first == values[i + 1].first) continue;
+    const int64_t above = n - below, failures_above = total_failures - failures_below;
+    if (below < min_leaf || above < min_leaf) continue;
+    const double gain = parent - (static_cast<double>(below) / n) * Entropy(failures_below, below) -
+                        (static_cast<double>(above) / n) * Entropy(failures_above, above);
+    if (best && gain <= best->gain) continue;
+    Split s;
+    s.feature = f;
+    s.threshold = 0.5 * (values[i].first + values[i + 1].first);
+    s.failures_below = Rate(failures_below, below) >= Rate(failures_above, above);
+    s.n_side = s.failures_below ? below : above;
+    s.failures_side = s.failures_below ? failures_below : failures_above;
+    s.n_other = s.failures_below ? above : below;
+    s.failures_other = s.failures_below ? failures_above : failures_below;
+    s.gain = gain;
+    best = s;
+  }
+  return best;
+}
+
+TreeNode Grow(const FeatureTable& table, const std::vector<bool>& failed,
+              const std::vector<size_t>& subset, int depth, int64_t min_leaf) {
+  TreeNode node;
+  node.n = static_cast<int64_t>(subset.size());
+  for (size_t r : subset) node.failures += failed[r];
+  if (depth == 0 || node.failures == 0 || node.failures == node.n) return node;
+  std::optional<Split> best;
+  for (int f = 0; f < static_cast<int>(table.names.size()); ++f) {
+    const auto s = BestSplit(table, failed, subset, f, min_leaf);
+    if (s && (!best || s->gain > best->gain)) best = s;
+  }
+  if (!best || best->gain <= 1e-9) return node;
+  node.split = best;
+  std::vector<size_t> below, above;
+  for (size_t r : subset) {
+    const double v = table.rows[r][best->feature];
+    (std::isnan(v) || v <= best->threshold ? below : above).push_back(r);
+  }
+  node.children.push_back(Grow(table, failed, below, depth - 1, min_leaf));
+  node.children.push_back(Grow(table, failed, above, depth - 1, min_leaf));
+  return node;
+}
+
+std::string FormatNumber(double x) { return fmt::format("{:.4g}", x); }
+
+std::string FormatRate(int64_t k, int64_t n) {
+  const auto [lo, hi] = CalcWilsonInterval(k, n);
+  return fmt::format("{} of {} ({:.1f} %, 95 % CI {:.1f}–{:.1f} %)", k, n, 100 * Rate(k, n),
+                     100 * lo, 100 * hi);
+}
+
+std::string DescribeSide(const FeatureTable& table, const Split& s, bool failure_side) {
+  const bool below = s.failures_below == failure_side;
+  return fmt::format("{} {} {}", table.names[s.feature], below ? "≤" : ">",
+                     FormatNumber(s.threshold));
+}
+
+void FormatTree(const FeatureTable& table, const TreeNode& node, int indent, std::string* out) {
+  const std::string pad(2 * indent, ' ');
+  if (!node.split) return;
+  const Split& s = *node.split;
+  for (int side = 0; side < 2; ++side) {
+    const TreeNode& child = node.children[side];
+    *out += fmt::format("{}- if {} {} {}: {} fail\n", pad, table.names[s.feature],
+                        side == 0 ? "≤" : ">", FormatNumber(s.threshold),
+                        FormatRate(child.failures, child.n));
+    FormatTree(table, child, indent + 1, out);
+  }
+}
+
+// A scatter plot of two features: failures red, successes grey.
+std::string FormatScatterSvg(const FeatureTable& table, const std::vector<bool>& failed, int fx,
+                             int fy) {
+  constexpr double kW = 640, kH = 480, kMargin = 60;
+  double x_lo = INFINITY, x_hi = -INFINITY, y_lo = INFINITY, y_hi = -INFINITY;
+  for (const auto& row : table.rows) {
+    if (std::isnan(row[fx]) || std::isnan(row[fy])) continue;
+    x_lo = std::min(x_lo, row[fx]);
+    x_hi = std::max(x_hi, row[fx]);
+    y_lo = std::min(y_lo, row[fy]);
+    y_hi = std::max(y_hi, row[fy]);
+  }
+  if (!(x_hi > x_lo)) x_hi = x_lo + 1;
+  if (!(y_hi > y_lo)) y_hi = y_lo + 1;
+  auto px = [&](double x) { return kMargin + (x - x_lo) / (x_hi - x_lo) * (kW - 2 * kMargin); };
+  auto py = [&](double y) { return kH - kMargin - (y - y_lo) / (y_hi - y_lo) * (kH - 2 * kMargin); };
+  std::string svg = fmt::format(
+      "<svg xmlns=\"http://www.w3.org/2000/svg\" width=\"{0}\" height=\"{1}\" "
+      "font-family=\"sans-serif\" font-size=\"12\">\n<rect width=\"{0}\" height=\"{1}\" "
+      "fill=\"white\"/>\n<rect x=\"{2}\" y=\"{2}\" width=\"{3}\" height=\"{4}\" fill=\"none\" "
+      "stroke=\"black\"/>\n",
+      kW, kH, kMargin, kW - 2 * kMargin, kH - 2 * kMargin);
+  // Successes first, so that failures are drawn on top.
+  for (int pass = 0; pass < 2; ++pass) {
+    for (size_t r = 0; r < table.rows.size(); ++r) {
+      if (failed[r] != (pass == 1)) continue;
+      const auto& row = table.rows[r];
+      if (std::isnan(row[fx]) || std::isnan(row[fy])) continue;
+      svg += fmt::format("<circle cx=\"{:.1f}\" cy=\"{:.1f}\" r=\"2.5\" fill=\"{}\"/>\n",
+                         px(row[fx]), py(row[fy]), pass == 1 ? "#d62728" : "#b0b0b0");
+    }
+  }
+  svg += fmt::format(
+      "<text x=\"{}\" y=\"{}\" text-anchor=\"middle\">{} ({} … {})</text>\n"
+      "<text x=\"16\" y=\"{}\" text-anchor=\"middle\" transform=\"rotate(-90 16 {})\">{} ({} … "
+      "{})</text>\n<text x=\"{}\" y=\"20\">red: failures, grey: successes</text>\n</svg>\n",
+      kW / 2, kH - 20, table.names[fx], FormatNumber(x_lo), FormatNumber(x_hi), kH / 2, kH / 2,
+      table.names[fy], FormatNumber(y_lo), FormatNumber(y_hi), kMargin);
+  return svg;
+}
+
+}  // namespace
+
+std::vector<ReportRecord> ParseReportRecords(const std::vector<std::string>& lines,
+                                             const std::string& path) {
+  std::vector<ReportRecord> records;
+  for (size_t n = 0; n < lines.size(); ++n) {
+    if (lines[n].find_first_not_of(" \t\r") == std::string::npos) continue;
+    const auto j = nlohmann::json::parse(lines[n], nullptr, /*allow_exceptions=*/false);
+    const std::string where = fmt::format("{}:{}", path, n + 1);
+    if (!j.is_object() || !j.contains("outcome") || !j["outcome"].is_string() ||
+        !j.contains("index") || !j["index"].is_number_unsigned()) {
+      throw std::runtime_error(where + ": not an episode record (a JSON object with \"index\" and "
+                                       "\"outcome\"); give the -o file of prs test or prs search");
+    }
+    ReportRecord r;
+    r.line = static_cast<int64_t>(n + 1);
+    r.index = j["index"].get<uint64_t>();
+    r.outcome = j["outcome"].get<std::string>();
+    if (j.contains("score") && j["score"].is_number()) r.score = j["score"].get<double>();
+    if (j.contains("coordinates") && j["coordinates"].is_array()) {
+      for (const auto& x : j["coordinates"]) {
+        if (x.is_number()) r.coordinates.push_back(x.get<double>());
+      }
+    }
+    if (j.contains("features") && j["features"].is_object()) {
+      for (const auto& [name, value] : j["features"].items()) {
+        if (value.is_number() && std::isfinite(value.get<double>())) {
+          r.features.emplace_back(name, value.get<double>());
+        }
+      }
+    }
+    if (j.contains("saved_scene") && j["saved_scene"].is_string()) {
+      r.saved_scene = j["saved_scene"].get<std::string>();
+    }
+    records.push_back(std::move(r));
+  }
+  if (records.empty()) throw std::runtime_error(path + ": no episode records");
+  return records;
+}
+
+FeatureTable BuildFeatureTable(const std::vector<ReportRecord>& records) {
+  // Recorded features, in order of first appearance.
+  std::vector<std::string> names;
+  std::map<std::string, int> column;
+  for (const auto& r : records) {
+    for (const auto& [name, value] : r.features) {
+      if (column.emplace(name, static_cast<int>(names.size())).second) names.push_back(name);
+    }
+  }
+  std::vector<std::vector<double>> base(records.size(), std::vector<double>(names.size(), NAN));
+  for (size_t i = 0; i < records.size(); ++i) {
+    for (const auto& [name, value] : records[i].features) base[i][column[name]] = value;
+  }
+  auto varies = [&](const std::vector<std::vector<double>>& rows, size_t f) {
+    double lo = INFINITY, hi = -INFINITY;
+    for (const auto& row : rows) {
+      if (std::isnan(row[f])) continue;
+      lo = std::min(lo, row[f]);
+      hi = std::max(hi, row[f]);
+    }
+    return hi - lo > 1e-12;
+  };
+  FeatureTable table;
+  table.rows.assign(records.size(), {});
+  auto add = [&](const std::string& name, auto value_of) {
+    std::vector<std::vector<double>> one(records.size(), std::vector<double>(1));
+    for (size_t i = 0; i < records.size(); ++i) one[i][0] = value_of(i);
+    if (!varies(one, 0)) return;
+    table.names.push_back(name);
+    for (size_t i = 0; i < records.size(); ++i) table.rows[i].push_back(one[i][0]);
+  };
+  for (size_t f = 0; f < names.size(); ++f) {
+    add(names[f], [&](size_t i) { return base[i][f]; });
+  }
+  // Objects with recorded positions; pairs where at least one of the two moves.
+  std::vector<std::string> objects;
+  for (const auto& name : names) {
+    if (name.size() > 2 && name.compare(name.size() - 2, 2, ".x") == 0) {
+      objects.push_back(name.substr(0, name.size() - 2));
+    }
+  }
+  auto value = [&](size_t i, const std::string& name) {
+    const auto it = column.find(name);
+    return it == column.end() ? NAN : base[i][it->second];
+  };
+  for (size_t a = 0; a < objects.size(); ++a) {
+    for (size_t b = a + 1; b < objects.size(); ++b) {
+      const std::string& A = objects[a];
+      const std::string& B = objects[b];
+      auto dx = [&](size_t i) { return value(i, A + ".x") - value(i, B + ".x"); };
+      auto dy = [&](size_t i) { return value(i, A + ".y") - value(i, B + ".y"); };
+      add("dist(" + A + ", " + B + ")", [&](size_t i) { return std::hypot(dx(i), dy(i)); });
+      add(A + "-" + B + ".x", dx);
+      add(A + "-" + B + ".y", dy);
+    }
+  }
+  size_t d = 0;
+  for (const auto& r : records) d = std::max(d, r.coordinates.size());
+  for (size_t j = 0; j < d; ++j) {
+    add("u[" + std::to_string(j) + "]", [&](size_t i) {
+      return j < records[i].coordinates.size() ? records[i].coordinates[j] : NAN;
+    });
+  }
+  return table;
+}
+
+std::vector<Split> RankSplits(const FeatureTable& table, const std::vector<bool>& failed) {
+  std::vector<size_t> all(table.rows.size());
+  std::iota(all.begin(), all.end(), 0);
+  std::vector<Split> splits;
+  const int64_t min_leaf = std::max<int64_t>(5, static_cast<int64_t>(table.rows.size()) / 100);
+  for (int f = 0; f < static_cast<int>(table.names.size()); ++f) {
+    if (auto s = BestSplit(table, failed, all, f, min_leaf)) splits.push_back(*s);
+  }
+  std::stable_sort(splits.begin(), splits.end(),
+                   [](const Split& a, const Split& b) { return a.gain > b.gain; });
+  return splits;
+}
+
+std::pair<double, double> CalcWilsonInterval(int64_t k, int64_t n) {
+  if (n == 0) return {0, 1};
+  constexpr double z = 1.959963984540054;
+  const double p = static_cast<double>(k) / n, nn = static_cast<double>(n);
+  const double centre = (p + z * z / (2 * nn)) / (1 + z * z / nn);
+  const double half = z * std::sqrt(p * (1 - p) / nn + z * z / (4 * nn * nn)) / (1 + z * z / nn);
+  return {std::max(0.0, centre - half), std::min(1.0, centre + half)};
+}
+
+TreeNode GrowTree(const FeatureTable& table, const std::vector<bool>& failed, int depth,
+                  int64_t min_leaf) {
+  std::vector<size_t> all(table.rows.size());
+  std::iota(all.begin(), all.end(), 0);
+  return Grow(table, failed, all, depth, min_leaf);
+}
+
+std::vector<FailureMode> FindFailureModes(const FeatureTable& table,
+                                          const std::vector<bool>& failed) {
+  const int64_t n = static_cast<int64_t>(failed.size());
+  const int64_t failures = std::count(failed.begin(), failed.end(), true);
+  if (failures == 0) return {};
+  std::vector<size_t> all(failed.size());
+  std::iota(all.begin(), all.end(), 0);
+  const TreeNode root = Grow(table, failed, all, 3, std::max<int64_t>(5, n / 50));
+  std::vector<FailureMode> modes;
+  // Walks the tree keeping each path's conditions and records.
+  struct Step {
+    const TreeNode* node;
+    std::string description;
+    std::vector<int> features;
+    std::vector<size_t> records;
+  };
+  std::vector<Step> stack = {{&root, "", {}, all}};
+  while (!stack.empty()) {
+    Step step = std::move(stack.back());
+    stack.pop_back();
+    const TreeNode& node = *step.node;
+    if (node.split) {
+      const Split& s = *node.split;
+      std::vector<size_t> side[2];
+      for (size_t r : step.records) {
+        const double v = table.rows[r][s.feature];
+        side[std::isnan(v) || v <= s.threshold ? 0 : 1].push_back(r);
+      }
+      for (int k = 1; k >= 0; --k) {
+        std::vector<int> features = step.features;
+        features.push_back(s.feature);
+        const std::string condition = fmt::format("{} {} {}", table.names[s.feature],
+                                                  k == 0 ? "≤" : ">", FormatNumber(s.threshold));
+        stack.push_back({&node.children[k],
+                         step.description.empty() ? condition : step.description + " and " + condition,
+                         std::move(features), std::move(side[k])});
+      }
+      continue;
+    }
+    const bool rich = node.failures * n > failures * node.n;
+    if (!rich || node.failures * 10 < failures) continue;
+    FailureMode mode;
+    mode.description = step.description.empty() ? "every episode" : step.description;
+    mode.n = node.n;
+    for (size_t r : step.records) {
+      if (failed[r]) mode.members.push_back(r);
+    }
+    mode.mean.assign(table.names.size(), 0);
+    for (size_t f = 0; f < table.names.size(); ++f) {
+      double sum = 0;
+      int64_t count = 0;
+      for (size_t r : mode.members) {
+        if (std::isnan(table.rows[r][f])) continue;
+        sum += table.rows[r][f];
+        ++count;
+      }
+      mode.mean[f] = count ? sum / count : NAN;
+    }
+    // The representative: nearest the members' mean in the path's features, each scaled by
+    // its spread over the members.
+    auto distance = [&](size_t r) {
+      double d = 0;
+      for (int f : step.features) {
+        double spread = 0;
+        for (size_t m : mode.members) spread += std::pow(table.rows[m][f] - mode.mean[f], 2);
+        spread = std::sqrt(spread / static_cast<double>(mode.members.size()));
+        const double v = table.rows[r][f];
+        if (!std::isnan(v) && spread > 0) d += std::pow((v - mode.mean[f]) / spread, 2);
+      }
+      return d;
+    };
+    mode.representative = mode.members.front();
+    for (size_t r : mode.members) {
+      if (distance(r) < distance(mode.representative)) mode.representative = r;
+    }
+    modes.push_back(std::move(mode));
+  }
+  std::stable_sort(modes.begin(), modes.end(), [](const FailureMode& a, const FailureMode& b) {
+    return a.members.size() > b.members.size();
+  });
+  return modes;
+}
+
+std::string FormatFailureReport(const std::vector<ReportRecord>& records,
+                                const ReportOptions& options, std::string* svg) {
+  const FeatureTable table = BuildFeatureTable(records);
+  std::vector<bool> failed(records.size());
+  int64_t failures = 0;
+  std::map<std::string, int64_t> outcomes;
+  for (size_t i = 0; i < records.size(); ++i) {
+    failed[i] = records[i].failed();
+    failures += failed[i];
+    ++outcomes[records[i].outcome];
+  }
+  const int64_t n = static_cast<int64_t>(records.size());
+  std::string md = fmt::format("# Failure report: {}\n\n{} episodes; {} failed.\n\n",
+                               options.title, n, FormatRate(failures, n));
+  md += "| outcome | episodes | share |\n|---|---|---|\n";
+  for (const auto& [name, count] : outcomes) {
+    md += fmt::format("| {} | {} | {:.1f} % |\n", name, count, 100 * Rate(count, n));
+  }
+  if (failures == 0 || failures == n) {
+    md += fmt::format("\nEvery episode {}: nothing separates failures from successes.\n",
+                      failures == 0 ? "succeeded" : "failed");
+    return md;
+  }
+  const std::vector<Split> splits = RankSplits(table, failed);
+  md += "\n## What separates failures from successes\n\n";
+  if (splits.empty()) {
+    md += "No feature splits the episodes (the records carry no varying features).\n";
+    return md;
+  }
+  const Split& top = splits.front();
+  md += fmt::format(
+      "The strongest single split: **{}**. There, {} fail; elsewhere {}.\n\n",
+      DescribeSide(table, top, true), FormatRate(top.failures_side, top.n_side),
+      FormatRate(top.failures_other, top.n_other));
+  md += "| rank | feature | failure-rich side | fail there | fail elsewhere | gain (bits) |\n"
+        "|---|---|---|---|---|---|\n";
+  for (size_t i = 0; i < splits.size() && i < 10; ++i) {
+    const Split& s = splits[i];
+    md += fmt::format("| {} | {} | {} | {} | {} | {:.3f} |\n", i + 1, table.names[s.feature],
+                      DescribeSide(table, s, true), FormatRate(s.failures_side, s.n_side),
+                      FormatRate(s.failures_other, s.n_other), s.gain);
+  }
+  md += "\n## A depth-2 decision tree\n\n";
+  FormatTree(table, GrowTree(table, failed, 2,
+                             std::max<int64_t>(5, n / 50)),
+             0, &md);
+  md += "\n## Failure modes\n\n";
+  const std::vector<FailureMode> modes = FindFailureModes(table, failed);
+  int64_t in_modes = 0;
+  for (const FailureMode& mode : modes) in_modes += static_cast<int64_t>(mode.members.size());
+  md += fmt::format("The failures fall into {} (the failure-rich leaves of a depth-3 tree that "
+                    "hold at least 10 % of them); {} of {} failures are in one.\n\n",
+                    modes.size() == 1 ? std::string("one mode") : fmt::format("{} modes", modes.size()),
+                    in_modes, failures);
+  md += "| mode | where | fail there | mean of the top features | representative |\n"
+        "|---|---|---|---|---|\n";
+  for (size_t m = 0; m < modes.size(); ++m) {
+    const FailureMode& mode = modes[m];
+    std::string means;
+    for (size_t i = 0; i < splits.size() && i < 3; ++i) {
+      means += fmt::format("{}{} = {}", means.empty() ? "" : ", ", table.names[splits[i].feature],
+                           FormatNumber(mode.mean[splits[i].feature]));
+    }
+    const ReportRecord& rep = records[mode.representative];
+    std::string picture;
+    if (!rep.saved_scene.empty()) {
+      const std::string stem = rep.saved_scene.substr(0, rep.saved_scene.rfind('.'));
+      picture = fmt::format(" ![index {}]({}.png)", rep.index, stem);
+    }
+    md += fmt::format("| {} | {} | {} | {} | index {} (line {}, {}){} |\n", m + 1,
+                      mode.description,
+                      FormatRate(static_cast<int64_t>(mode.members.size()), mode.n), means,
+                      rep.index, rep.line, rep.outcome, picture);
+  }
+  md += "\n## Outcomes by feature (quantile bins)\n\n";
+  for (size_t i = 0; i < splits.size() && i < 3; ++i) {
+    const int f = splits[i].feature;
+    std::vector<std::pair<double, bool>> values;
+    for (size_t r = 0; r < records.size(); ++r) {
+      if (!std::isnan(table.rows[r][f])) values.emplace_back(table.rows[r][f], failed[r]);
+    }
+    std::sort(values.begin(), values.end());
+    md += fmt::format("**{}**\n\n| range | episodes | fail |\n|---|---|---|\n", table.names[f]);
+    constexpr int kBins = 5;
+    for (int b = 0; b < kBins; ++b) {
+      const size_t lo = values.size() * b / kBins, hi = values.size() * (b + 1) / kBins;
+      if (lo >= hi) continue;
+      int64_t k = 0;
+      for (size_t v = lo; v < hi; ++v) k += values[v].second;
+      md += fmt::format("| {} … {} | {} | {} |\n", FormatNumber(values[lo].first),
+                        FormatNumber(values[hi - 1].first), hi - lo,
+                        FormatRate(k, static_cast<int64_t>(hi - lo)));
+    }
+    md += "\n";
+  }
+  // The error table by scene coordinate, for records drawn at coordinates.
+  size_t d = 0;
+  for (const auto& r : records) d = std::max(d, r.coordinates.size());
+  if (d > 0) {
+    md += "## Outcomes by scene coordinate (failure rate in fifths of [0, 1))\n\n"
+          "| coordinate | 0–0.2 | 0.2–0.4 | 0.4–0.6 | 0.6–0.8 | 0.8–1 |\n|---|---|---|---|---|---|\n";
+    for (size_t j = 0; j < d; ++j) {
+      int64_t k[5] = {0}, m[5] = {0};
+      for (size_t r = 0; r < records.size(); ++r) {
+        if (j >= records[r].coordinates.size()) continue;
+        const int b = std::clamp(static_cast<int>(records[r].coordinates[j] * 5), 0, 4);
+        ++m[b];
+        k[b] += failed[r];
+      }
+      md += fmt::format("| u[{}] |", j);
+      for (int b = 0; b < 5; ++b) {
+        md += m[b] ? fmt::format(" {:.0f} % of {} |", 100 * Rate(k[b], m[b]), m[b]) : " – |";
+      }
+      md += "\n";
+    }
+    md += "\n(`prs check FILE --coordinates` names u[j].)\n";
+  }
+  if (svg && !options.svg_path.empty()) {
+    int second = -1;
+    for (size_t i = 1; i < splits.size(); ++i) {
+      if (splits[i].feature != top.feature) {
+        second = splits[i].feature;
+        break;
+      }
+    }
+    if (second >= 0) {
+      *svg = FormatScatterSvg(table, failed, top.feature, second);
+      const std::string file = options.svg_path.substr(options.svg_path.rfind('/') + 1);
+      md += fmt::format("\n## The two most separating features\n\n![{} against {}]({})\n",
+                        table.names[top.feature], table.names[second], file);
+    }
+  }
+  return md;
+}
+
+}  // namespace prs::search

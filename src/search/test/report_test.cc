@@ -1,0 +1,111 @@
+// Failure reports on synthetic records with a planted cause: the top split names the planted
+// feature and threshold, two separate causes give two failure modes, the Wilson interval is
+// right, and a malformed results file is a located error.
+#include "search/report.h"
+
+#include <gtest/gtest.h>
+
+#include <cmath>
+
+#include "geometry/random.h"
+#include "harness/harness.h"
+
+namespace prs::search {
+namespace {
+
+// Records with a cube, a tray and a camera at random; the cube fails when it is far left
+// (x <= -0.75) and, with `second_cause`, also when far back (y > 0.3).
+std::vector<std::string> SyntheticRecords(int n, bool second_cause) {
+  geometry::Rng rng(5);
+  std::vector<std::string> lines;
+  for (int i = 0; i < n; ++i) {
+    harness::EpisodeRecord r;
+    r.index = static_cast<uint64_t>(i);
+    const double x = rng.Uniform(-0.9, 0), y = rng.Uniform(-0.4, 0.4);
+    r.features = {{"t.x", 0.0},         {"t.y", 0.0},         {"Cube#5.x", x},
+                  {"Cube#5.y", y},      {"Camera#6.z", rng.Uniform(1.9, 2.1)},
+                  {"tr_1.x", rng.Uniform(-0.7, -0.2)}, {"tr_1.y", rng.Uniform(-0.1, 0.1)}};
+    const bool fails = x <= -0.75 || (second_cause && y > 0.3);
+    r.result.outcome = fails ? "no-path" : "success";
+    r.coordinates = {rng.Uniform01(), (x + 0.9) / 0.9};
+    lines.push_back(harness::FormatRecordJson(r));
+  }
+  return lines;
+}
+
+TEST(ReportTest, TheTopSplitNamesThePlantedFeature) {
+  const auto records = ParseReportRecords(SyntheticRecords(2000, false), "r.jsonl");
+  const FeatureTable table = BuildFeatureTable(records);
+  // t.x and t.y never vary, so they are dropped; distances and offsets are added.
+  EXPECT_EQ(std::count(table.names.begin(), table.names.end(), "t.x"), 0);
+  EXPECT_EQ(std::count(table.names.begin(), table.names.end(), "dist(Cube#5, tr_1)"), 1);
+  std::vector<bool> failed;
+  for (const auto& r : records) failed.push_back(r.failed());
+  const std::vector<Split> splits = RankSplits(table, failed);
+  ASSERT_FALSE(splits.empty());
+  // Cube#5.x, or a feature equal to it up to a fixed shift (the offset from the fixed table,
+  // or the coordinate u[1] made from it).
+  const std::string top = table.names[splits[0].feature];
+  EXPECT_TRUE(top == "Cube#5.x" || top == "Cube#5-t.x" || top == "u[1]") << top;
+  const Split& s = splits[0];
+  EXPECT_TRUE(s.failures_below);
+  EXPECT_EQ(s.failures_side, s.n_side);  // every episode on that side fails
+  EXPECT_EQ(s.failures_other, 0);
+  const std::string md = FormatFailureReport(records, {"r.jsonl", ""}, nullptr);
+  EXPECT_NE(md.find("The strongest single split: **"), std::string::npos) << md;
+  EXPECT_NE(md.find("≤ -0.74"), std::string::npos) << md;  // the threshold, -0.7498
+  EXPECT_NE(md.find("one mode"), std::string::npos) << md;
+}
+
+TEST(ReportTest, TwoCausesGiveTwoFailureModes) {
+  const auto records = ParseReportRecords(SyntheticRecords(3000, true), "r.jsonl");
+  const FeatureTable table = BuildFeatureTable(records);
+  std::vector<bool> failed;
+  for (const auto& r : records) failed.push_back(r.failed());
+  const std::vector<FailureMode> modes = FindFailureModes(table, failed);
+  ASSERT_EQ(modes.size(), 2u);
+  // One mode is far left, the other far back: their representatives say so.
+  int x_column = -1, y_column = -1;
+  for (size_t f = 0; f < table.names.size(); ++f) {
+    if (table.names[f] == "Cube#5.x") x_column = static_cast<int>(f);
+    if (table.names[f] == "Cube#5.y") y_column = static_cast<int>(f);
+  }
+  ASSERT_GE(x_column, 0);
+  ASSERT_GE(y_column, 0);
+  int left = 0, back = 0;
+  for (const FailureMode& mode : modes) {
+    const auto& row = table.rows[mode.representative];
+    EXPECT_TRUE(failed[mode.representative]);
+    left += row[x_column] <= -0.75 && row[y_column] <= 0.3;
+    back += row[y_column] > 0.3 && row[x_column] > -0.75;
+  }
+  EXPECT_EQ(left, 1);
+  EXPECT_EQ(back, 1);
+  std::string svg;
+  const std::string md = FormatFailureReport(records, {"r.jsonl", "out/report.svg"}, &svg);
+  EXPECT_NE(md.find("2 modes"), std::string::npos) << md;
+  EXPECT_NE(md.find("![Cube#5"), std::string::npos) << md;
+  EXPECT_NE(md.find("(report.svg)"), std::string::npos) << md;
+  EXPECT_EQ(svg.rfind("<svg", 0), 0u);
+  EXPECT_NE(svg.find("#d62728"), std::string::npos);  // failures are drawn
+}
+
+TEST(ReportTest, WilsonIntervalAndBadInput) {
+  const auto [lo, hi] = CalcWilsonInterval(10, 100);
+  EXPECT_NEAR(lo, 0.0552, 1e-3);  // the textbook values for 10 of 100
+  EXPECT_NEAR(hi, 0.1744, 1e-3);
+  EXPECT_EQ(CalcWilsonInterval(0, 0), std::make_pair(0.0, 1.0));
+  try {
+    ParseReportRecords({"{\"index\": 1, \"outcome\": \"success\"}", "oops"}, "r.jsonl");
+    ADD_FAILURE() << "a malformed line was accepted";
+  } catch (const std::runtime_error& e) {
+    EXPECT_NE(std::string(e.what()).find("r.jsonl:2: not an episode record"), std::string::npos);
+  }
+  EXPECT_THROW(ParseReportRecords({"", "  "}, "r.jsonl"), std::runtime_error);
+  const auto all_success = ParseReportRecords({"{\"index\": 0, \"outcome\": \"success\"}"}, "r");
+  EXPECT_NE(FormatFailureReport(all_success, {"r", ""}, nullptr).find("Every episode succeeded"),
+            std::string::npos);
+}
+
+}  // namespace
+}  // namespace prs::search
