@@ -129,5 +129,32 @@ TEST_F(PrsTest, CheckListsTheSceneCoordinates) {
   EXPECT_NE(f.out.find("no scene coordinates"), std::string::npos) << f.out;
 }
 
+TEST_F(PrsTest, ReportNamesWhereTheControllerFails) {
+  const std::string results = (dir_ / "r.jsonl").string();
+  Result r = Run({"test", Example("table_cube.prs"), "--controller", "planted-1-percent", "-n",
+                  "3000", "-s", "3", "-o", results});
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  r = Run({"report", results});
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  // The planted disk is the far corner of the cube's range: the report's strongest split is
+  // about the cube (its position, or its distance or offset from another object).
+  const size_t top = r.out.find("The strongest single split: **");
+  ASSERT_NE(top, std::string::npos) << r.out;
+  EXPECT_NE(r.out.substr(top, 80).find("Cube#5"), std::string::npos) << r.out.substr(top, 200);
+  EXPECT_NE(r.out.find("## Failure modes"), std::string::npos);
+  const std::string md = (dir_ / "report.md").string();
+  r = Run({"report", results, "-o", md});
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  EXPECT_TRUE(fs::exists(dir_ / "report.svg"));
+  EXPECT_NE(ReadText(md).find("(report.svg)"), std::string::npos);
+  // Bad input: a located message, exit 1.
+  const std::string bad = Write("bad.jsonl", "{\"index\": 0, \"outcome\": \"success\"}\n[1, 2]\n");
+  r = Run({"report", bad});
+  EXPECT_EQ(r.exit_code, 1);
+  EXPECT_NE(r.err.find("bad.jsonl:2: not an episode record"), std::string::npos) << r.err;
+  r = Run({"report", (dir_ / "missing.jsonl").string()});
+  EXPECT_EQ(r.exit_code, 1);
+}
+
 }  // namespace
 }  // namespace prs::cli
