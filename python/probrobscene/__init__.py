@@ -9,9 +9,10 @@ Scene ``i`` of seed ``s`` is the scene ``prs sample -s s --start i`` prints, on 
 any number of threads. Units are metres and radians. See docs/python.md.
 """
 
+import json
 import numbers
 import os
-from typing import Iterator, Mapping, Optional, Sequence, Union
+from typing import Any, Dict, Iterable, Iterator, List, Mapping, Optional, Sequence, Union
 
 from . import _core
 from ._core import (Scenario, Scene, SceneObject, dimensions, positions, quaternions,
@@ -21,7 +22,7 @@ from ._errors import SamplingError, ScenarioError
 __version__ = "0.1.0"
 __all__ = [
     "load", "loads", "Scenario", "Scene", "SceneObject", "ScenarioError", "SamplingError",
-    "positions", "dimensions", "quaternions", "yaw_pitch_roll",
+    "positions", "dimensions", "quaternions", "yaw_pitch_roll", "search", "report",
 ]
 
 PathLike = Union[str, "os.PathLike[str]"]
@@ -110,3 +111,33 @@ def _scenes(self: Scenario, seed: int = 0, start: int = 0, count: Optional[int] 
 
 
 Scenario.scenes = _scenes
+
+
+def search(scenario: Scenario, controller, budget: int, strategy: str = "ce", seed: int = 0,
+           batch: Optional[int] = None) -> List[Dict[str, Any]]:
+    """Searches for scenes where ``controller`` fails, as ``prs search`` (docs/search.md).
+
+    ``controller(scene)`` returns an outcome name (``"success"``, ``"no-path"``, ...) or a dict
+    with ``"outcome"`` and optionally ``"detail"``, ``"score"`` (a finite number: larger is
+    safer, 0 or less a failure; the search descends it) and anything else (the record's
+    ``"extra"``). ``strategy`` is ``"ce"`` (cross-entropy), ``"anneal"`` or ``"random"``
+    (i.i.d., the baseline). Every scene the controller sees satisfies the whole scenario.
+    Returns the records as dicts, as ``prs search -o`` writes them (each with the scene's
+    ``"coordinates"`` and ``"features"``); pass them to :func:`report`.
+    """
+    return scenario.search(controller, budget, strategy=strategy, seed=seed, batch=batch)
+
+
+def report(records: Union[PathLike, Iterable[Mapping[str, Any]]]) -> str:
+    """A failure report in Markdown, as ``prs report`` prints it: what separates failures from
+    successes, a depth-2 tree, failure modes with a representative each, error tables.
+
+    ``records`` is a JSON Lines file of episode records (``prs test -o``, ``prs search -o``) or
+    the records themselves (e.g. what :func:`search` returned). Raises ValueError naming the
+    line of a record that is not one.
+    """
+    if isinstance(records, (str, os.PathLike)):
+        path = os.fspath(records)
+        with open(path, encoding="utf-8") as f:
+            return _core.report_markdown(f.read().splitlines(), path)
+    return _core.report_markdown([json.dumps(r) for r in records], "<records>")

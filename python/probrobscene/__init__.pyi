@@ -1,6 +1,6 @@
 # Type hints for the probrobscene package (the C++ extension _core and the Python wrapper).
 import os
-from typing import Any, Dict, Iterable, Iterator, List, Mapping, Optional, Sequence, Union
+from typing import Any, Callable, Dict, Iterable, Iterator, List, Mapping, Optional, Sequence, Union
 
 import numpy as np
 import numpy.typing as npt
@@ -84,6 +84,10 @@ class Scenario:
                threads: Optional[int] = 1) -> Iterator[Scene]: ...
     def check(self, n: int = 20, seed: int = 0,
               threads: Optional[int] = None) -> Dict[str, Any]: ...
+    def coordinates(self) -> List[Dict[str, Any]]: ...  # name, draw, file, line, column
+    def search(self, controller: Callable[[Scene], Union[str, Mapping[str, Any]]], budget: int,
+               strategy: str = "ce", seed: int = 0,
+               batch: Optional[int] = None) -> List[Dict[str, Any]]: ...
 
 def load(path: PathLike, params: Optional[Mapping[str, ParamValue]] = None,
          search_path: Optional[Sequence[PathLike]] = None, *, max_attempts: int = 10000,
@@ -91,6 +95,11 @@ def load(path: PathLike, params: Optional[Mapping[str, ParamValue]] = None,
 def loads(text: str, params: Optional[Mapping[str, ParamValue]] = None,
           search_path: Optional[Sequence[PathLike]] = None, *, name: str = "<string>",
           max_attempts: int = 10000, naive: bool = False) -> Scenario: ...
+
+def search(scenario: Scenario, controller: Callable[[Scene], Union[str, Mapping[str, Any]]],
+           budget: int, strategy: str = "ce", seed: int = 0,
+           batch: Optional[int] = None) -> List[Dict[str, Any]]: ...
+def report(records: Union[PathLike, Iterable[Mapping[str, Any]]]) -> str: ...  # Markdown
 
 def positions(scenes: Iterable[Scene], name: str) -> FloatArray: ...  # (n, 3)
 def dimensions(scenes: Iterable[Scene], name: str) -> FloatArray: ...  # (n, 3)

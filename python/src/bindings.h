@@ -7,6 +7,7 @@
 
 #include <initializer_list>
 #include <memory>
+#include <optional>
 #include <string>
 
 #include "lang/lang.h"
@@ -63,5 +64,16 @@ void BindScene(py::module_& m);
 void BindSceneFiles(py::class_<Scene, ScenePtr>& scene);
 /// Registers Scenario and the compile functions (scenario.cc).
 void BindScenario(py::module_& m);
+
+/// search.cc: the program's scene coordinates as dicts (name, draw, file, line, column).
+py::list ListCoordinates(const lang::CompiledProgram& program,
+                         const sampling::SampleOptions& options);
+/// search.cc: a failure search with a Python callable as the controller; the records as dicts.
+py::list RunPythonSearch(const ProgramPtr& program, const sampling::SampleOptions& sample,
+                         const py::function& controller, int64_t budget,
+                         const std::string& strategy, uint64_t seed,
+                         std::optional<int64_t> batch);
+/// search.cc: report_markdown(lines, title).
+void BindSearch(py::module_& m);
 
 }  // namespace prs::python

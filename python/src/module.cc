@@ -6,4 +6,5 @@ PYBIND11_MODULE(_core, m) {
   m.doc() = "The ProbRobScene engine (internal; use the probrobscene package).";
   prs::python::BindScene(m);
   prs::python::BindScenario(m);
+  prs::python::BindSearch(m);
 }

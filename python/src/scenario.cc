@@ -75,6 +75,14 @@ class Scenario {
     return summary;
   }
 
+  py::list Coordinates() const { return ListCoordinates(*program_, options_); }
+
+  py::list Search(const py::function& controller, int64_t budget, const std::string& strategy,
+                  const py::object& seed_arg, std::optional<int64_t> batch) {
+    return RunPythonSearch(program_, options_, controller, budget, strategy,
+                           ToSceneNumber(seed_arg, "seed"), batch);
+  }
+
   const std::string& path() const { return path_; }
   int64_t max_attempts() const { return options_.max_attempts; }
   bool naive() const { return options_.run.mode == lang::SamplingMode::kNaive; }
@@ -243,6 +251,17 @@ void BindScenario(py::module_& m) {
            "varied = the properties that differed between the n scenes sampled) and\n"
            "'classes' (name, parent, file, line, own_properties). n=0 samples nothing.\n"
            "Raises as sample_batch() when sampling fails.")
+      .def("coordinates", &Scenario::Coordinates,
+           "The scene coordinates (docs/search.md): one dict per number an attempt draws, with\n"
+           "'name' (e.g. 'Cube#5.position[0]'), 'draw', 'file', 'line', 'column'; as\n"
+           "`prs check --coordinates` lists them.")
+      .def("search", &Scenario::Search, py::arg("controller"), py::arg("budget"),
+           py::arg("strategy") = "ce", py::arg("seed") = 0, py::arg("batch") = py::none(),
+           "Searches for scenes where `controller` fails, as `prs search` (docs/search.md).\n"
+           "`controller(scene)` returns an outcome name ('success', 'no-path', ...) or a dict\n"
+           "with 'outcome' and optionally 'detail', 'score' (finite; larger is safer, <= 0 a\n"
+           "failure) and anything else (the record's 'extra'). Runs on this thread. Returns\n"
+           "the records as dicts, as `prs search -o` writes them.")
       .def_property_readonly("path", &Scenario::path, "The file (or loads()' name).")
       .def_property_readonly("max_attempts", &Scenario::max_attempts,
                              "Attempts per scene before sampling fails.")

@@ -1,0 +1,134 @@
+// Scene coordinates, failure search and failure reports from Python (docs/python.md,
+// docs/search.md): Scenario.coordinates(), Scenario.search() with a Python callable as the
+// controller, and report() over records.
+#include <pybind11/stl.h>
+
+#include "bindings.h"
+#include "harness/harness.h"
+#include "search/report.h"
+#include "search/search.h"
+
+namespace prs::python {
+namespace {
+
+// A Python callable as a controller: called with the Scene, it returns an outcome name or a
+// dict {"outcome": ..., "detail": ..., "score": ..., anything else -> extra}. Runs on the
+// calling thread with the GIL held (the search runs with one thread).
+class PythonController : public harness::Controller {
+ public:
+  PythonController(ProgramPtr program, py::function function)
+      : program_(std::move(program)), function_(std::move(function)) {}
+
+  harness::EpisodeResult RunEpisode(const sampling::SampledScene& sampled,
+                                    const std::string&) override {
+    auto scene = std::make_shared<Scene>(Scene{program_, sampled});
+    const py::object answer = function_(scene);
+    harness::EpisodeResult result;
+    if (py::isinstance<py::str>(answer)) {
+      result.outcome = answer.cast<std::string>();
+      result.detail = "the controller returned " + result.outcome;
+      return result;
+    }
+    if (!py::isinstance<py::dict>(answer)) {
+      return {"bad-answer", "the controller must return an outcome name or a dict with "
+                            "\"outcome\", not " + std::string(py::str(answer.get_type().attr("__name__")))};
+    }
+    py::dict dict = answer.cast<py::dict>();
+    if (!dict.contains("outcome") || !py::isinstance<py::str>(dict["outcome"])) {
+      return {"bad-answer", "the controller's dict has no \"outcome\" string"};
+    }
+    result.outcome = dict["outcome"].cast<std::string>();
+    result.detail = dict.contains("detail") ? std::string(py::str(dict["detail"]))
+                                            : "the controller returned " + result.outcome;
+    if (dict.contains("score")) {
+      const py::object score = dict["score"];
+      const bool number = py::isinstance<py::float_>(score) || py::isinstance<py::int_>(score);
+      if (!number || !std::isfinite(score.cast<double>())) {
+        return {"bad-answer", "the controller's \"score\" must be a finite number (larger is "
+                              "safer, 0 or less a failure)"};
+      }
+      result.score = score.cast<double>();
+    }
+    const py::object dumps = py::module_::import("json").attr("dumps");
+    for (const auto& [key, value] : dict) {
+      const std::string name = py::str(key);
+      if (name == "outcome" || name == "detail" || name == "score") continue;
+      result.extra[name] = nlohmann::json::parse(
+          dumps(value, py::arg("default") = py::module_::import("builtins").attr("str"))
+              .cast<std::string>());
+    }
+    return result;
+  }
+
+ private:
+  ProgramPtr program_;
+  py::function function_;
+};
+
+}  // namespace
+
+py::list ListCoordinates(const lang::CompiledProgram& program,
+                         const sampling::SampleOptions& options) {
+  py::list out;
+  for (const lang::CoordinateInfo& c : sampling::DescribeCoordinates(program, options)) {
+    const lang::LineColumn where = program.sources.CalcLineColumn(c.span.file, c.span.begin);
+    py::dict d;
+    d["name"] = c.name;
+    d["draw"] = c.draw;
+    d["file"] = program.sources.path(c.span.file);
+    d["line"] = where.line;
+    d["column"] = where.column;
+    out.append(d);
+  }
+  return out;
+}
+
+py::list RunPythonSearch(const ProgramPtr& program, const sampling::SampleOptions& sample,
+                         const py::function& controller, int64_t budget,
+                         const std::string& strategy, uint64_t seed,
+                         std::optional<int64_t> batch) {
+  search::SearchOptions options;
+  if (!search::ParseStrategy(strategy, &options.strategy)) {
+    throw py::value_error("unknown strategy '" + strategy + "' (strategies: ce, anneal, random)");
+  }
+  if (budget < 1) throw py::value_error("budget must be >= 1, got " + std::to_string(budget));
+  if (batch && *batch < 1) throw py::value_error("batch must be >= 1, got " + std::to_string(*batch));
+  options.budget = budget;
+  options.batch = batch.value_or(0);
+  options.run.sample = sample;
+  options.run.seed = seed;
+  options.run.threads = 1;  // the Python controller runs on this thread, with the GIL
+  search::SearchSummary summary;
+  try {
+    summary = search::RunSearch(
+        *program, [&] { return std::make_unique<PythonController>(program, controller); },
+        options);
+  } catch (const search::NothingToSearch& error) {
+    throw py::value_error(error.what());
+  } catch (const lang::ScenarioError& error) {
+    RaiseScenarioError(error.diagnostic(), program->sources,
+                       lang::RenderDiagnostic(error.diagnostic(), program->sources));
+  }
+  const py::object loads = py::module_::import("json").attr("loads");
+  py::list records;
+  for (const harness::EpisodeRecord& record : summary.records) {
+    records.append(loads(harness::FormatRecordJson(record)));
+  }
+  return records;
+}
+
+void BindSearch(py::module_& m) {
+  m.def(
+      "report_markdown",
+      [](const std::vector<std::string>& lines, const std::string& title) {
+        try {
+          return search::FormatFailureReport(search::ParseReportRecords(lines, title),
+                                             {title, ""}, nullptr);
+        } catch (const std::runtime_error& error) {
+          throw py::value_error(error.what());
+        }
+      },
+      py::arg("lines"), py::arg("title"));
+}
+
+}  // namespace prs::python

@@ -1,0 +1,64 @@
+"""Scene coordinates, failure search and failure reports from Python (docs/search.md)."""
+
+import math
+
+import pytest
+
+import probrobscene as prs
+
+
+def cube_in_corner(scene):
+    """Fails when the cube is within 9 cm of (-0.8, 0.3), like `planted-1-percent`."""
+    x, y, _ = scene["Cube#5"].position
+    distance = math.hypot(x + 0.8, y - 0.3) - 0.09
+    return {"outcome": "planted-failure" if distance <= 0 else "success", "score": distance,
+            "cube_xy": [x, y]}
+
+
+def test_coordinates_are_named_from_the_program(table_cube):
+    coordinates = table_cube.coordinates()
+    assert len(coordinates) == 11
+    assert coordinates[6]["name"] == "Cube#5.position[0]"
+    assert coordinates[6]["draw"] == "position"
+    assert coordinates[6]["line"] == 17
+
+
+def test_search_finds_more_failures_than_iid_and_reports_them(table_cube):
+    seen = []
+
+    def controller(scene):
+        seen.append(scene.index)
+        return cube_in_corner(scene)
+
+    found = prs.search(table_cube, controller, budget=300, seed=4)
+    baseline = prs.search(table_cube, cube_in_corner, budget=300, seed=4, strategy="random")
+    assert [r["index"] for r in found] == list(range(300)) == seen
+    failures = sum(r["outcome"] != "success" for r in found)
+    iid_failures = sum(r["outcome"] != "success" for r in baseline)
+    assert failures >= 3 * max(iid_failures, 1), (failures, iid_failures)
+    record = found[0]
+    assert record["search"]["strategy"] == "ce" and len(record["coordinates"]) == 11
+    assert "cube_xy" in record["extra"] and isinstance(record["score"], float)
+    # The same search from the same seed gives the same records.
+    again = prs.search(table_cube, cube_in_corner, budget=300, seed=4)
+    assert [r["coordinates"] for r in again] == [r["coordinates"] for r in found]
+    markdown = prs.report(found)
+    assert markdown.startswith("# Failure report")
+    assert "The strongest single split: **" in markdown and "Cube#5" in markdown
+
+
+def test_bad_requests_raise(table_cube):
+    with pytest.raises(ValueError, match="unknown strategy 'bo'"):
+        prs.search(table_cube, cube_in_corner, budget=10, strategy="bo")
+    with pytest.raises(ValueError, match="budget must be >= 1"):
+        prs.search(table_cube, cube_in_corner, budget=0)
+    fixed = prs.loads("Object at Vector3D(0, 0, 0)\n")
+    with pytest.raises(ValueError, match="draws nothing at random"):
+        prs.search(fixed, cube_in_corner, budget=10)
+    records = prs.search(table_cube, lambda scene: {"outcome": "success", "score": math.nan},
+                         budget=3)
+    assert {r["outcome"] for r in records} == {"bad-answer"}
+    records = prs.search(table_cube, lambda scene: 42, budget=2)
+    assert {r["outcome"] for r in records} == {"bad-answer"}
+    with pytest.raises(ValueError, match="<records>:1: not an episode record"):
+        prs.report([{"no": "outcome"}])
