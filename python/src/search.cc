@@ -3,6 +3,8 @@
 // controller, and report() over records.
 #include <pybind11/stl.h>
 
+#include <atomic>
+
 #include "bindings.h"
 #include "harness/harness.h"
 #include "search/report.h"
@@ -16,13 +18,21 @@ namespace {
 // calling thread with the GIL held (the search runs with one thread).
 class PythonController : public harness::Controller {
  public:
-  PythonController(ProgramPtr program, py::function function)
-      : program_(std::move(program)), function_(std::move(function)) {}
+  PythonController(ProgramPtr program, py::function function, std::atomic<bool>* cancel)
+      : program_(std::move(program)), function_(std::move(function)), cancel_(cancel) {}
 
   harness::EpisodeResult RunEpisode(const sampling::SampledScene& sampled,
                                     const std::string&) override {
     auto scene = std::make_shared<Scene>(Scene{program_, sampled});
-    const py::object answer = function_(scene);
+    py::object answer;
+    try {
+      answer = function_(scene);
+    } catch (py::error_already_set& error) {
+      // Ctrl-C (or a KeyboardInterrupt raised by the controller) stops the search; any other
+      // exception is this episode's controller-error.
+      if (error.matches(PyExc_KeyboardInterrupt)) cancel_->store(true);
+      throw;
+    }
     harness::EpisodeResult result;
     if (py::isinstance<py::str>(answer)) {
       result.outcome = answer.cast<std::string>();
@@ -63,6 +73,7 @@ class PythonController : public harness::Controller {
  private:
   ProgramPtr program_;
   py::function function_;
+  std::atomic<bool>* cancel_;
 };
 
 }  // namespace
@@ -98,11 +109,17 @@ py::list RunPythonSearch(const ProgramPtr& program, const sampling::SampleOption
   options.run.sample = sample;
   options.run.seed = seed;
   options.run.threads = 1;  // the Python controller runs on this thread, with the GIL
+  std::atomic<bool> cancel{false};
+  options.run.cancel = &cancel;
   search::SearchSummary summary;
   try {
     summary = search::RunSearch(
-        *program, [&] { return std::make_unique<PythonController>(program, controller); },
+        *program,
+        [&] { return std::make_unique<PythonController>(program, controller, &cancel); },
         options);
+  } catch (const sampling::BatchCancelled&) {
+    PyErr_SetNone(PyExc_KeyboardInterrupt);
+    throw py::error_already_set();
   } catch (const search::NothingToSearch& error) {
     throw py::value_error(error.what());
   } catch (const lang::ScenarioError& error) {

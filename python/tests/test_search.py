@@ -62,3 +62,24 @@ def test_bad_requests_raise(table_cube):
     assert {r["outcome"] for r in records} == {"bad-answer"}
     with pytest.raises(ValueError, match="<records>:1: not an episode record"):
         prs.report([{"no": "outcome"}])
+
+
+def test_keyboard_interrupt_stops_the_search_and_other_exceptions_do_not(table_cube):
+    calls = []
+
+    def interrupted(scene):
+        calls.append(scene.index)
+        if len(calls) == 5:
+            raise KeyboardInterrupt
+        return "success"
+
+    with pytest.raises(KeyboardInterrupt):
+        prs.search(table_cube, interrupted, budget=100)
+    assert len(calls) == 5
+
+    def broken(scene):
+        raise RuntimeError("the gripper driver is not connected")
+
+    records = prs.search(table_cube, broken, budget=4)
+    assert {r["outcome"] for r in records} == {"controller-error"}
+    assert "gripper driver" in records[0]["detail"]
