@@ -25,6 +25,8 @@ struct SampleArgs {
   DesignArgs design;
   std::string like;     // --like RESULTS.jsonl
   std::string outcome;  // --outcome NAME (with --like)
+  std::string near;     // --near RESULTS.jsonl[:LINE]
+  double scale = 0.05;  // --scale S (with --near)
   SceneRangeArgs range;
   std::string output;  // empty or "-": stdout
   bool quiet = false;
@@ -74,7 +76,7 @@ class SceneWriterRun {
       if (!PrepareDesign(args_.design, program_, args_.range, options.sample, &design_)) {
         return kExitUsage;
       }
-      if (!args_.like.empty()) {
+      if (!args_.like.empty() || !args_.near.empty()) {
         if (!PrepareLike(options.sample)) return kExitUsage;
       }
       sampling::BatchCallbacks callbacks = MakeCallbacks();
@@ -127,15 +129,38 @@ class SceneWriterRun {
     return callbacks;
   }
 
-  // --like: the proposal fitted to the failures of the records file.
+  // --like: the proposal fitted to the failures of the records file; --near: normals of
+  // standard deviation --scale around one record's coordinates.
   bool PrepareLike(sampling::SampleOptions& sample) {
-    const auto lines = ReadLines(args_.like);
+    std::string path = args_.near.empty() ? args_.like : args_.near;
+    int64_t line = 0;
+    const size_t colon = path.rfind(':');
+    if (!args_.near.empty() && colon != std::string::npos && colon + 1 < path.size() &&
+        path.find_first_not_of("0123456789", colon + 1) == std::string::npos) {
+      line = std::stoll(path.substr(colon + 1));
+      path.resize(colon);
+    }
+    const auto lines = ReadLines(path);
     if (!lines) return false;
     const int dimension = static_cast<int>(sampling::DescribeCoordinates(program_, sample).size());
     try {
       if (dimension == 0) {
-        throw std::runtime_error("--like: this program draws nothing at random, so every scene "
-                                 "is like every other");
+        throw std::runtime_error(std::string(args_.near.empty() ? "--like" : "--near") +
+                                 ": this program draws nothing at random, so every scene is "
+                                 "like every other");
+      }
+      if (!args_.near.empty()) {
+        const std::vector<double> centre = search::ReadRecordCoordinates(
+            *lines, path, line, search::CalcSpecHash(program_), dimension);
+        like_ = std::make_unique<search::GaussianPoints>(
+            centre, std::vector<double>(centre.size(), args_.scale), 0.0);
+        sample.points = like_.get();
+        if (!args_.quiet) {
+          PrintNote(fmt::format("drawing scenes near {} {} (scale {})", path,
+                                line ? fmt::format("line {}", line) : "(its first failure)",
+                                args_.scale));
+        }
+        return true;
       }
       const search::FailureSet failures =
           search::ReadFailures(*lines, args_.like, args_.outcome, search::CalcSpecHash(program_),
@@ -249,6 +274,22 @@ CommandRunner ConfigureSampleCommand(CLI::App& command) {
   command.add_option("--outcome", args->outcome, "with --like: only episodes with this outcome")
       ->type_name("NAME")
       ->needs(like);
+  CLI::Option* near =
+      command
+          .add_option("--near", args->near,
+                      "draw scenes near one episode of RESULTS (LINE, or its first failure): "
+                      "small changes that keep the whole program satisfied")
+          ->type_name("RESULTS[:LINE]")
+          ->check(NonEmptyPath())
+          ->excludes(command.get_option("--design"))
+          ->excludes(like);
+  command
+      .add_option("--scale", args->scale,
+                  "with --near: the standard deviation of the changes, in scene coordinates")
+      ->type_name("S")
+      ->check(CLI::Range(1e-6, 1.0))
+      ->capture_default_str()
+      ->needs(near);
   command.add_flag("-q,--quiet", args->quiet, "no summary on stderr");
   return [args] { return RunSample(*args); };
 }

@@ -5,6 +5,7 @@
 #include <algorithm>
 #include <cmath>
 #include <map>
+#include <optional>
 #include <stdexcept>
 
 #include <fmt/format.h>
@@ -23,6 +24,42 @@ uint64_t Fnv1a(uint64_t hash, std::string_view bytes) {
     hash *= 0x100000001B3ULL;
   }
   return hash;
+}
+
+// One line as an episode record (a JSON object with an "outcome" string), or a located error.
+nlohmann::json ParseRecord(const std::string& line, const std::string& where) {
+  auto record = nlohmann::json::parse(line, nullptr, /*allow_exceptions=*/false);
+  if (!record.is_object() || !record.contains("outcome") || !record["outcome"].is_string()) {
+    throw std::runtime_error(where + ": not an episode record (a JSON object with an "
+                                     "\"outcome\"); give the -o file of prs search or prs test");
+  }
+  return record;
+}
+
+// The record's coordinates, checked against the program; nullopt when it has none.
+std::optional<std::vector<double>> CheckCoordinates(const nlohmann::json& record,
+                                                    const std::string& where,
+                                                    const std::string& spec_hash, int dimension) {
+  const auto coordinates = record.find("coordinates");
+  if (coordinates == record.end()) return std::nullopt;
+  const auto spec = record.find("spec");
+  if (spec == record.end() || !spec->is_string()) {
+    throw std::runtime_error(where + ": the record has coordinates but no \"spec\" hash, so "
+                                     "it cannot be tied to this program");
+  }
+  if (spec->get<std::string>() != spec_hash) {
+    throw std::runtime_error(where + ": the record was written for another program (spec " +
+                             spec->get<std::string>() + ", this one is " + spec_hash +
+                             "); give the same FILE, -I and -p as the run that wrote it");
+  }
+  if (!coordinates->is_array() || static_cast<int>(coordinates->size()) != dimension ||
+      !std::all_of(coordinates->begin(), coordinates->end(), [](const nlohmann::json& x) {
+        return x.is_number() && x.get<double>() >= 0 && x.get<double>() < 1;
+      })) {
+    throw std::runtime_error(fmt::format(
+        "{}: \"coordinates\" must be {} numbers of [0, 1) for this program", where, dimension));
+  }
+  return coordinates->get<std::vector<double>>();
 }
 
 }  // namespace
@@ -67,38 +104,17 @@ FailureSet ReadFailures(const std::vector<std::string>& lines, const std::string
   for (size_t n = 0; n < lines.size(); ++n) {
     const std::string& line = lines[n];
     if (line.find_first_not_of(" \t\r") == std::string::npos) continue;
-    const auto record = nlohmann::json::parse(line, nullptr, /*allow_exceptions=*/false);
     const std::string where = fmt::format("{}:{}", path, n + 1);
-    if (!record.is_object() || !record.contains("outcome") || !record["outcome"].is_string()) {
-      throw std::runtime_error(where + ": not an episode record (a JSON object with an "
-                                       "\"outcome\"); give the -o file of prs search or prs test");
-    }
+    const nlohmann::json record = ParseRecord(line, where);
     ++set.records;
     const std::string name = record["outcome"].get<std::string>();
     ++outcomes[name];
-    const auto coordinates = record.find("coordinates");
-    if (coordinates == record.end()) continue;
+    const std::optional<std::vector<double>> coordinates =
+        CheckCoordinates(record, where, spec_hash, dimension);
+    if (!coordinates) continue;
     ++with_coordinates;
-    const auto spec = record.find("spec");
-    if (spec == record.end() || !spec->is_string()) {
-      throw std::runtime_error(where + ": the record has coordinates but no \"spec\" hash, so "
-                                       "it cannot be tied to this program");
-    }
-    if (spec->get<std::string>() != spec_hash) {
-      throw std::runtime_error(
-          where + ": the record was written for another program (spec " +
-          spec->get<std::string>() + ", this one is " + spec_hash +
-          "); give the same FILE, -I and -p as the run that wrote it");
-    }
-    if (!coordinates->is_array() || static_cast<int>(coordinates->size()) != dimension ||
-        !std::all_of(coordinates->begin(), coordinates->end(), [](const nlohmann::json& x) {
-          return x.is_number() && x.get<double>() >= 0 && x.get<double>() < 1;
-        })) {
-      throw std::runtime_error(fmt::format(
-          "{}: \"coordinates\" must be {} numbers of [0, 1) for this program", where, dimension));
-    }
     const bool selected = outcome.empty() ? name != "success" : name == outcome;
-    if (selected) set.coordinates.push_back(coordinates->get<std::vector<double>>());
+    if (selected) set.coordinates.push_back(*coordinates);
   }
   if (with_coordinates == 0) {
     throw std::runtime_error(path + ": no record has scene coordinates; write records with "
@@ -115,6 +131,27 @@ FailureSet ReadFailures(const std::vector<std::string>& lines, const std::string
                              " (outcomes: " + found + ")");
   }
   return set;
+}
+
+std::vector<double> ReadRecordCoordinates(const std::vector<std::string>& lines,
+                                          const std::string& path, int64_t line,
+                                          const std::string& spec_hash, int dimension) {
+  if (line == 0) {
+    return ReadFailures(lines, path, "", spec_hash, dimension).coordinates.front();
+  }
+  if (line < 0 || line > static_cast<int64_t>(lines.size())) {
+    throw std::runtime_error(fmt::format("{}: has {} lines; there is no line {}", path,
+                                         lines.size(), line));
+  }
+  const std::string where = fmt::format("{}:{}", path, line);
+  const auto record = ParseRecord(lines[line - 1], where);
+  std::optional<std::vector<double>> coordinates =
+      CheckCoordinates(record, where, spec_hash, dimension);
+  if (!coordinates) {
+    throw std::runtime_error(where + ": the record has no scene coordinates; write records with "
+                                     "prs search -o, or prs test --design sobol -o");
+  }
+  return *coordinates;
 }
 
 GaussianPoints FitLike(const FailureSet& failures) {

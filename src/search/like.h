@@ -58,4 +58,11 @@ FailureSet ReadFailures(const std::vector<std::string>& lines, const std::string
 /// least 0.02), with 5 % uniform points.
 GaussianPoints FitLike(const FailureSet& failures);
 
+/// The coordinates of one record of a results file for --near: the record on line `line`
+/// (1-based), or with line 0 the first failing one. Throws std::runtime_error as ReadFailures
+/// (also for a line past the end, a blank line, or no failing record).
+std::vector<double> ReadRecordCoordinates(const std::vector<std::string>& lines,
+                                          const std::string& path, int64_t line,
+                                          const std::string& spec_hash, int dimension);
+
 }  // namespace prs::search

@@ -129,6 +129,34 @@ TEST_F(PrsTest, CheckListsTheSceneCoordinates) {
   EXPECT_NE(f.out.find("no scene coordinates"), std::string::npos) << f.out;
 }
 
+TEST_F(PrsTest, NearDrawsSmallChangesOfOneEpisode) {
+  const std::string results = (dir_ / "r.jsonl").string();
+  Result r = Run({"search", Example("table_cube.prs"), "--controller", "planted-1-percent",
+                  "--budget", "100", "-s", "2", "-o", results});
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  const json episode = ReadJsonLines(results)[41];
+  const double x = episode["features"]["Cube#5.x"], y = episode["features"]["Cube#5.y"];
+  r = Run({"sample", Example("table_cube.prs"), "--near", results + ":42", "--scale", "0.01",
+           "-n", "20", "-s", "5"});
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  std::stringstream lines(r.out);
+  int scenes = 0;
+  for (std::string line; std::getline(lines, line); ++scenes) {
+    for (const json& object : json::parse(line)["objects"]) {
+      if (object["class"] != "Cube") continue;
+      // A 0.01 change of each coordinate moves the cube by centimetres, not across its tray.
+      EXPECT_LT(std::hypot(object["position"][0].get<double>() - x,
+                           object["position"][1].get<double>() - y), 0.08);
+    }
+  }
+  EXPECT_EQ(scenes, 20);
+  r = Run({"sample", Example("table_cube.prs"), "--near", results + ":101"});
+  EXPECT_EQ(r.exit_code, 2);
+  EXPECT_NE(r.err.find("there is no line 101"), std::string::npos) << r.err;
+  r = Run({"sample", Example("table_cube.prs"), "--near", results, "--like", results});
+  EXPECT_EQ(r.exit_code, 2);
+}
+
 TEST_F(PrsTest, ReportNamesWhereTheControllerFails) {
   const std::string results = (dir_ / "r.jsonl").string();
   Result r = Run({"test", Example("table_cube.prs"), "--controller", "planted-1-percent", "-n",
