@@ -8,7 +8,8 @@ A strategy that finds no failure in the budget counts the budget + 1 as its firs
 (so the median is a lower bound on the truth for i.i.d. at 0.1 %).
 
 usage: bench/search_planted.py [--prs build/src/cli/prs] [--controller planted-1-permille]
-                               [--budget 1000] [--seeds 20] [--strategies random,ce,anneal]
+                               [--budget 1000] [--seeds 20] [--first-seed 1]
+                               [--strategies random,ce,anneal]
                                [-- extra prs search options]
 """
 import argparse
@@ -44,18 +45,21 @@ def main():
     parser.add_argument("--controller", default="planted-1-permille")
     parser.add_argument("--budget", type=int, default=1000)
     parser.add_argument("--seeds", type=int, default=20)
+    parser.add_argument("--first-seed", type=int, default=1)
     parser.add_argument("--strategies", default="random,ce,anneal")
     args, extra = parser.parse_known_args()
     extra = [a for a in extra if a != "--"]
     results = {}
     for strategy in args.strategies.split(","):
         runs = [run(args.prs, args.spec, args.controller, strategy, args.budget, seed, extra)
-                for seed in range(1, args.seeds + 1)]
+                for seed in range(args.first_seed, args.first_seed + args.seeds)]
         results[strategy] = (statistics.median(r[0] for r in runs),
                              statistics.median(r[1] for r in runs),
                              sum(r[1] > 0 for r in runs))
     base = results.get("random")
-    print(f"{args.controller}, budget {args.budget}, seeds 1..{args.seeds} {' '.join(extra)}")
+    last = args.first_seed + args.seeds - 1
+    print(f"{args.controller}, budget {args.budget}, seeds {args.first_seed}..{last} "
+          f"{' '.join(extra)}")
     print(f"{'strategy':10} {'median first failure':>22} {'median failures':>16} "
           f"{'seeds with one':>15} {'first vs iid':>13} {'failures vs iid':>16}")
     for strategy, (first, failures, found) in results.items():
