@@ -30,7 +30,8 @@ Value Interpreter::CallDistribution(Builtin id, const std::vector<Value>& args,
                            : id == Builtin::kDiscreteRange ? DistributionKind::kDiscreteRange
                                                            : DistributionKind::kNormal;
       distribution->args = {number(0, "the first parameter"), number(1, "the second parameter")};
-      if (id == Builtin::kDiscreteRange) CheckWholeNumbers(args, spans);
+      // The converted numbers: a bound may be a boolean (True is 1).
+      if (id == Builtin::kDiscreteRange) CheckWholeNumbers(distribution->args, spans);
       if (id == Builtin::kNormal && !(distribution->args[1].As<double>() >= 0)) {
         Fail(spans[1], "bad-value", "a normal's standard deviation must be >= 0, got " +
                                         FormatNumber(distribution->args[1].As<double>()));

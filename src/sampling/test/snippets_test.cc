@@ -192,5 +192,12 @@ require (right tr_1).x + 0.2 < table.x
   EXPECT_GT(far_left_trays, 0);  // the requirement filters, it does not pin the tray
 }
 
+TEST(SnippetTest, BooleanBoundsOfDiscreteRangeCountAsZeroAndOne) {
+  // Found by the fuzzer: a comparison as a bound used to abort (a bool read as a number).
+  ForEachScene(
+      "n = DiscreteRange(1.0 >= 5, 4)\nm = DiscreteRange(True, 1)\nrequire n >= 0 and n <= 4 and m == 1\n",
+      [](const lang::Scene&) {}, 20);
+}
+
 }  // namespace
 }  // namespace prs::sampling
