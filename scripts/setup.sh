@@ -35,6 +35,7 @@ packages=(
   pybind11-dev python3-dev python3-numpy  # the Python package (python/)
   python3-pip python3-setuptools python3-wheel  # pip install --no-build-isolation . (offline)
   python3-pytest python3-matplotlib  # Python tests and the plotting example
+  python3-sklearn        # probrobscene.search(strategy="bo"): Gaussian processes
   liburdfdom-dev libsdformat-dev  # prs export tests: URDF and SDF read by their own parsers
   python3                # prs test's example controller (examples/controllers/reach_check.py) in the tests
 )

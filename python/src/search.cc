@@ -99,8 +99,27 @@ py::list RunPythonSearch(const ProgramPtr& program, const sampling::SampleOption
                          const std::string& strategy, uint64_t seed,
                          std::optional<int64_t> batch) {
   search::SearchOptions options;
-  if (!search::ParseStrategy(strategy, &options.strategy)) {
-    throw py::value_error("unknown strategy '" + strategy + "' (strategies: ce, anneal, random)");
+  if (strategy == "bo") {
+    // Bayesian optimisation: the points of each generation come from probrobscene._bo (a
+    // Gaussian process on scikit-learn), called on this thread with the GIL held.
+    options.strategy = search::Strategy::kExternal;
+    options.external_name = "bo";
+    const py::object propose = py::module_::import("probrobscene._bo").attr("propose");
+    options.propose = [propose, seed](const std::vector<harness::EpisodeRecord>& so_far,
+                                      int64_t count, int dimension, int generation) {
+      py::list X, y;
+      for (const harness::EpisodeRecord& record : so_far) {
+        if (static_cast<int>(record.coordinates.size()) != dimension) continue;
+        X.append(py::cast(record.coordinates));
+        y.append(search::CalcBadness(record));
+      }
+      return propose(X, y, count, dimension, seed, generation)
+          .cast<std::vector<std::vector<double>>>();
+    };
+    if (!batch) batch = 10;
+  } else if (!search::ParseStrategy(strategy, &options.strategy)) {
+    throw py::value_error("unknown strategy '" + strategy +
+                          "' (strategies: ce, anneal, random, bo)");
   }
   if (budget < 1) throw py::value_error("budget must be >= 1, got " + std::to_string(budget));
   if (batch && *batch < 1) throw py::value_error("batch must be >= 1, got " + std::to_string(*batch));

@@ -47,9 +47,21 @@ def test_search_finds_more_failures_than_iid_and_reports_them(table_cube):
     assert "The strongest single split: **" in markdown and "Cube#5" in markdown
 
 
+def test_bayesian_optimisation_beats_iid(table_cube):
+    bo = prs.search(table_cube, cube_in_corner, budget=120, seed=2, strategy="bo")
+    iid = prs.search(table_cube, cube_in_corner, budget=120, seed=2, strategy="random")
+    assert [r["search"]["strategy"] for r in bo[:1]] == ["bo"]
+    assert bo[-1]["search"]["generation"] == 11  # generations of 10
+    bo_failures = sum(r["outcome"] != "success" for r in bo)
+    iid_failures = sum(r["outcome"] != "success" for r in iid)
+    assert bo_failures >= 3 * max(iid_failures, 2), (bo_failures, iid_failures)
+    again = prs.search(table_cube, cube_in_corner, budget=120, seed=2, strategy="bo")
+    assert [r["coordinates"] for r in again] == [r["coordinates"] for r in bo]
+
+
 def test_bad_requests_raise(table_cube):
-    with pytest.raises(ValueError, match="unknown strategy 'bo'"):
-        prs.search(table_cube, cube_in_corner, budget=10, strategy="bo")
+    with pytest.raises(ValueError, match="unknown strategy 'cee'"):
+        prs.search(table_cube, cube_in_corner, budget=10, strategy="cee")
     with pytest.raises(ValueError, match="budget must be >= 1"):
         prs.search(table_cube, cube_in_corner, budget=0)
     fixed = prs.loads("Object at Vector3D(0, 0, 0)\n")

@@ -118,6 +118,11 @@ CLI::Validator StrategyName() {
       [](std::string& text) -> std::string {
         search::Strategy strategy;
         if (search::ParseStrategy(text, &strategy)) return "";
+        if (text == "bo") {
+          return "Bayesian optimisation runs in the Python package, on scikit-learn: "
+                 "probrobscene.search(scenario, controller, budget, strategy=\"bo\") "
+                 "(docs/search.md); prs search has ce, anneal and random";
+        }
         const std::string suggestion = lang::SuggestClosest(text, search::StrategyNames());
         return "unknown strategy '" + text + "'" +
                (suggestion.empty() ? "" : "; did you mean '" + suggestion + "'?") +

@@ -37,7 +37,7 @@ constexpr double kFirstTemperature = 0.01;
 // Where a generation's points come from.
 class ProposalPoints : public sampling::AttemptPoints {
  public:
-  enum class Mode { kUniform, kSobol, kGaussian, kChain };
+  enum class Mode { kUniform, kSobol, kGaussian, kChain, kGiven };
 
   ProposalPoints(Mode mode, int dimension, uint64_t first_index, const std::vector<double>& mean,
                  const std::vector<double>& std)
@@ -71,13 +71,20 @@ class ProposalPoints : public sampling::AttemptPoints {
         }
         return true;
       }
+      case Mode::kGiven:
+        if (attempt == 0) {
+          const std::vector<double>& given = centres[index - first_index_];
+          std::copy(given.begin(), given.end(), u);
+          return true;
+        }
+        break;  // the given point was rejected: i.i.d. points after it
       case Mode::kUniform: break;
     }
     for (int j = 0; j < dimension_; ++j) u[j] = rng.Uniform01();
     return true;
   }
 
-  std::vector<std::vector<double>> centres;     // kChain: per episode slot
+  std::vector<std::vector<double>> centres;     // kChain, kGiven: per episode slot
   double step = kFirstStep;                     // kChain
 
  private:
@@ -88,13 +95,7 @@ class ProposalPoints : public sampling::AttemptPoints {
   std::unique_ptr<GaussianPoints> gaussian_;
 };
 
-// How bad an episode was: failures before successes, then by score (lower is worse). Without
-// a score, failures are -1 and successes +1.
-double Badness(const harness::EpisodeRecord& record) {
-  const bool failed = record.result.outcome != "success";
-  if (record.result.score) return *record.result.score - (failed ? 1e9 : 0);
-  return failed ? -1 : 1;
-}
+double Badness(const harness::EpisodeRecord& record) { return CalcBadness(record); }
 
 bool HasScore(const std::vector<harness::EpisodeRecord>& records) {
   return std::any_of(records.begin(), records.end(),
@@ -166,13 +167,35 @@ void UpdateChains(const std::vector<harness::EpisodeRecord>& batch, uint64_t see
   }
 }
 
+// A proposer's points: `count` of them, each of `d` numbers in [0, 1).
+void CheckProposal(const std::vector<std::vector<double>>& points, int64_t count, int d) {
+  if (static_cast<int64_t>(points.size()) != count) {
+    throw std::invalid_argument("the proposer gave " + std::to_string(points.size()) +
+                                " points for a generation of " + std::to_string(count));
+  }
+  for (const auto& u : points) {
+    if (static_cast<int>(u.size()) != d ||
+        !std::all_of(u.begin(), u.end(), [](double x) { return x >= 0 && x < 1; })) {
+      throw std::invalid_argument("the proposer gave a point that is not " + std::to_string(d) +
+                                  " numbers of [0, 1)");
+    }
+  }
+}
+
 }  // namespace
+
+double CalcBadness(const harness::EpisodeRecord& record) {
+  const bool failed = record.result.outcome != "success";
+  if (record.result.score) return *record.result.score - (failed ? 1e9 : 0);
+  return failed ? -1 : 1;
+}
 
 const char* StrategyName(Strategy strategy) {
   switch (strategy) {
     case Strategy::kRandom: return "random";
     case Strategy::kCrossEntropy: return "ce";
     case Strategy::kAnneal: return "anneal";
+    case Strategy::kExternal: return "external";
   }
   return "random";
 }
@@ -204,6 +227,9 @@ SearchSummary RunSearch(const lang::CompiledProgram& program,
     throw std::invalid_argument("the generation size must be at least 1, got " +
                                 std::to_string(batch));
   }
+  if (options.strategy == Strategy::kExternal && !options.propose) {
+    throw std::invalid_argument("the external strategy needs a proposer");
+  }
   SearchSummary summary;
   summary.batch = batch;
   summary.coordinates = sampling::DescribeCoordinates(program, options.run.sample);
@@ -225,7 +251,9 @@ SearchSummary RunSearch(const lang::CompiledProgram& program,
     const int64_t count = std::min(batch, options.budget - done);
     using Mode = ProposalPoints::Mode;
     Mode mode = Mode::kUniform;
-    if (options.strategy != Strategy::kRandom) {
+    if (options.strategy == Strategy::kExternal) {
+      mode = Mode::kGiven;
+    } else if (options.strategy != Strategy::kRandom) {
       mode = generation == 0 ? Mode::kSobol
              : options.strategy == Strategy::kCrossEntropy ? Mode::kGaussian
                                                             : Mode::kChain;
@@ -234,13 +262,19 @@ SearchSummary RunSearch(const lang::CompiledProgram& program,
     points.centres = centres;
     points.step = step;
     if (mode == Mode::kChain) points.centres.resize(count, std::vector<double>(d, 0.5));
+    if (mode == Mode::kGiven) {
+      points.centres = options.propose(summary.records, count, d, generation);
+      CheckProposal(points.centres, count, d);
+    }
 
     harness::RunOptions run = options.run;
     run.sample.points = &points;
     run.spec_hash = spec_hash;
     run.start = static_cast<uint64_t>(done);
     run.count = count;
-    const nlohmann::json tag = {{"strategy", StrategyName(options.strategy)},
+    const nlohmann::json tag = {{"strategy", options.strategy == Strategy::kExternal
+                                                 ? options.external_name
+                                                 : std::string(StrategyName(options.strategy))},
                                 {"generation", generation}};
     run.on_record = [&](const harness::EpisodeRecord& record) {
       harness::EpisodeRecord tagged = record;

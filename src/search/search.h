@@ -18,11 +18,26 @@ enum class Strategy {
   kRandom,        // i.i.d. uniform points: the baseline, distributed as `prs test`
   kCrossEntropy,  // the cross-entropy method over independent truncated normals per coordinate
   kAnneal,        // simulated annealing: one Metropolis chain per episode slot of a generation
+  kExternal,      // points from SearchOptions::propose (Python's Bayesian optimisation)
 };
 
-const char* StrategyName(Strategy strategy);  // "random", "ce", "anneal"
+const char* StrategyName(Strategy strategy);  // "random", "ce", "anneal", "external"
+/// The strategies `prs search` runs itself (not "external").
 std::vector<std::string> StrategyNames();
 bool ParseStrategy(const std::string& name, Strategy* strategy);
+
+/// What a strategy learns from one evaluated episode: its scene coordinates and its badness
+/// (lower is worse: failures below every success, then by score; without a score -1 for a
+/// failure, +1 for a success).
+double CalcBadness(const harness::EpisodeRecord& record);
+
+/// The points of the next generation for Strategy::kExternal: given every record so far (in
+/// evaluation order), the number of points wanted and the generation, returns that many points
+/// of dimension `dimension`, each coordinate in [0, 1). An attempt at a point that the
+/// program rejects is retried at i.i.d. uniform points (the scene still follows the program).
+using Proposer = std::function<std::vector<std::vector<double>>(
+    const std::vector<harness::EpisodeRecord>& so_far, int64_t count, int dimension,
+    int generation)>;
 
 /// Thrown when the program draws nothing at random: there is nothing to search.
 class NothingToSearch : public std::runtime_error {
@@ -43,6 +58,11 @@ struct SearchOptions {
   /// Called on the calling thread with each record, in evaluation order, as its generation
   /// finishes (so a stopped search has complete records up to its last finished generation).
   std::function<void(const harness::EpisodeRecord&)> on_record;
+  /// Strategy::kExternal only. Its exceptions propagate from RunSearch; a wrong number of
+  /// points, or a point of the wrong size or outside [0, 1), is std::invalid_argument.
+  Proposer propose;
+  /// The name records carry as "strategy" for kExternal (e.g. "bo").
+  std::string external_name = "external";
 };
 
 struct SearchSummary {
@@ -63,8 +83,8 @@ int64_t DefaultBatch(int64_t budget);
 
 /// Runs the search. The records are a pure function of (program, controller, strategy,
 /// budget, batch, seed): the same for any thread count. Throws std::invalid_argument for a
-/// budget or batch < 1, NothingToSearch, and what harness::RunEpisodes throws (a scenario
-/// error, sampling::BatchCancelled).
+/// budget or batch < 1 (or kExternal without a proposer), NothingToSearch, and what
+/// harness::RunEpisodes throws (a scenario error, sampling::BatchCancelled).
 SearchSummary RunSearch(const lang::CompiledProgram& program,
                         const harness::ControllerFactory& factory, const SearchOptions& options);
 

@@ -45,6 +45,10 @@ TEST_F(PrsTest, SearchRefusesBadRequests) {
                   "--budget", "10", "--strategy", "cee"});
   EXPECT_EQ(r.exit_code, 2);
   EXPECT_NE(r.err.find("did you mean 'ce'"), std::string::npos) << r.err;
+  r = Run({"search", Example("table_cube.prs"), "--controller", "planted-1-percent",
+           "--budget", "10", "--strategy", "bo"});
+  EXPECT_EQ(r.exit_code, 2);
+  EXPECT_NE(r.err.find("strategy=\"bo\""), std::string::npos) << r.err;
   r = Run({"search", Example("table_cube.prs"), "--controller", "planted-1-percent", "--budget",
            "0"});
   EXPECT_EQ(r.exit_code, 2);
