@@ -146,7 +146,8 @@ TEST_F(PrsTest, NearDrawsSmallChangesOfOneEpisode) {
   std::stringstream lines(r.out);
   int scenes = 0;
   for (std::string line; std::getline(lines, line); ++scenes) {
-    for (const json& object : json::parse(line)["objects"]) {
+    const json scene = json::parse(line);  // kept alive: the loop reads into it
+    for (const json& object : scene["objects"]) {
       if (object["class"] != "Cube") continue;
       // A 0.01 change of each coordinate moves the cube by centimetres, not across its tray.
       EXPECT_LT(std::hypot(object["position"][0].get<double>() - x,
