@@ -1,6 +1,8 @@
 // Scene coordinates, failure search and failure reports from Python (docs/python.md,
 // docs/search.md): Scenario.coordinates(), Scenario.search() with a Python callable as the
 // controller, and report() over records.
+#include "search/search.h"
+
 #include <pybind11/stl.h>
 
 #include <atomic>
@@ -8,7 +10,6 @@
 #include "bindings.h"
 #include "harness/harness.h"
 #include "search/report.h"
-#include "search/search.h"
 
 namespace prs::python {
 namespace {
@@ -40,8 +41,10 @@ class PythonController : public harness::Controller {
       return result;
     }
     if (!py::isinstance<py::dict>(answer)) {
-      return {"bad-answer", "the controller must return an outcome name or a dict with "
-                            "\"outcome\", not " + std::string(py::str(answer.get_type().attr("__name__")))};
+      return {"bad-answer",
+              "the controller must return an outcome name or a dict with "
+              "\"outcome\", not " +
+                  std::string(py::str(answer.get_type().attr("__name__")))};
     }
     py::dict dict = answer.cast<py::dict>();
     if (!dict.contains("outcome") || !py::isinstance<py::str>(dict["outcome"])) {
@@ -54,8 +57,9 @@ class PythonController : public harness::Controller {
       const py::object score = dict["score"];
       const bool number = py::isinstance<py::float_>(score) || py::isinstance<py::int_>(score);
       if (!number || !std::isfinite(score.cast<double>())) {
-        return {"bad-answer", "the controller's \"score\" must be a finite number (larger is "
-                              "safer, 0 or less a failure)"};
+        return {"bad-answer",
+                "the controller's \"score\" must be a finite number (larger is "
+                "safer, 0 or less a failure)"};
       }
       result.score = score.cast<double>();
     }
@@ -96,8 +100,7 @@ py::list ListCoordinates(const lang::CompiledProgram& program,
 
 py::list RunPythonSearch(const ProgramPtr& program, const sampling::SampleOptions& sample,
                          const py::function& controller, int64_t budget,
-                         const std::string& strategy, uint64_t seed,
-                         std::optional<int64_t> batch) {
+                         const std::string& strategy, uint64_t seed, std::optional<int64_t> batch) {
   search::SearchOptions options;
   if (strategy == "bo") {
     // Bayesian optimisation: the points of each generation come from probrobscene._bo (a
@@ -122,7 +125,8 @@ py::list RunPythonSearch(const ProgramPtr& program, const sampling::SampleOption
                           "' (strategies: ce, anneal, random, bo)");
   }
   if (budget < 1) throw py::value_error("budget must be >= 1, got " + std::to_string(budget));
-  if (batch && *batch < 1) throw py::value_error("batch must be >= 1, got " + std::to_string(*batch));
+  if (batch && *batch < 1)
+    throw py::value_error("batch must be >= 1, got " + std::to_string(*batch));
   options.budget = budget;
   options.batch = batch.value_or(0);
   options.run.sample = sample;
@@ -133,8 +137,7 @@ py::list RunPythonSearch(const ProgramPtr& program, const sampling::SampleOption
   search::SearchSummary summary;
   try {
     summary = search::RunSearch(
-        *program,
-        [&] { return std::make_unique<PythonController>(program, controller, &cancel); },
+        *program, [&] { return std::make_unique<PythonController>(program, controller, &cancel); },
         options);
   } catch (const sampling::BatchCancelled&) {
     PyErr_SetNone(PyExc_KeyboardInterrupt);
@@ -158,8 +161,8 @@ void BindSearch(py::module_& m) {
       "report_markdown",
       [](const std::vector<std::string>& lines, const std::string& title) {
         try {
-          return search::FormatFailureReport(search::ParseReportRecords(lines, title),
-                                             {title, ""}, nullptr);
+          return search::FormatFailureReport(search::ParseReportRecords(lines, title), {title, ""},
+                                             nullptr);
         } catch (const std::runtime_error& error) {
           throw py::value_error(error.what());
         }

@@ -31,7 +31,8 @@ std::optional<harness::ControllerFactory> ChooseController(const ControllerArgs&
                                                            const std::atomic<bool>& cancel);
 
 /// What `prs sample` needs to rewrite one of these scenes: FILE, -I, -p, --naive.
-std::vector<std::string> MakeScenarioWords(const ScenarioArgs& scenario, const SamplingArgs& sampling);
+std::vector<std::string> MakeScenarioWords(const ScenarioArgs& scenario,
+                                           const SamplingArgs& sampling);
 
 /// outcome / count / share, with a total row (the paper's Table III).
 std::string FormatOutcomeTable(const std::vector<harness::EpisodeRecord>& records);

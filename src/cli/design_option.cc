@@ -38,8 +38,9 @@ bool PrepareDesign(const DesignArgs& args, const lang::CompiledProgram& program,
   }
   const uint64_t size = range.start + static_cast<uint64_t>(range.count);
   if (kind == search::DesignKind::kLattice && (size < 1 || size > (uint64_t{1} << 32))) {
-    PrintError("--design lattice: the lattice is built for scenes 0..start+count-1, which must "
-               "be 1 to 2^32 scenes");
+    PrintError(
+        "--design lattice: the lattice is built for scenes 0..start+count-1, which must "
+        "be 1 to 2^32 scenes");
     return false;
   }
   *design = std::make_unique<search::Design>(kind, dimension, size);

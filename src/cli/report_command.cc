@@ -24,7 +24,8 @@ struct ReportArgs {
 std::string SvgPathFor(const std::string& output) {
   const size_t slash = output.rfind('/');
   const size_t dot = output.rfind('.');
-  const bool has_extension = dot != std::string::npos && (slash == std::string::npos || dot > slash);
+  const bool has_extension =
+      dot != std::string::npos && (slash == std::string::npos || dot > slash);
   return (has_extension ? output.substr(0, dot) : output) + ".svg";
 }
 

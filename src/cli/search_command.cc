@@ -82,10 +82,10 @@ int RunAndReport(const lang::CompiledProgram& program, const harness::Controller
   } catch (const sampling::BatchCancelled&) {
     progress.Erase();
     if (records) records->Flush();
-    PrintNote(fmt::format("interrupted after {}; the records of every finished generation are "
-                          "in {}",
-                          FormatCount(done, "episode"),
-                          records ? records->partial_path() : std::string("(no -o)")));
+    PrintNote(fmt::format(
+        "interrupted after {}; the records of every finished generation are "
+        "in {}",
+        FormatCount(done, "episode"), records ? records->partial_path() : std::string("(no -o)")));
     return kExitInterruptedBase + interrupt.signal_number();
   } catch (const std::exception& error) {
     progress.Erase();

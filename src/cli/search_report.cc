@@ -32,9 +32,9 @@ std::string FormatGenerationTable(const search::SearchSummary& summary) {
 
 std::string FormatSearchVerdict(const search::SearchSummary& summary, search::Strategy strategy) {
   const int64_t episodes = static_cast<int64_t>(summary.records.size());
-  std::string text = fmt::format("{} found {} in {}", search::StrategyName(strategy),
-                                 FormatCount(summary.failures, "failure"),
-                                 FormatCount(episodes, "episode"));
+  std::string text =
+      fmt::format("{} found {} in {}", search::StrategyName(strategy),
+                  FormatCount(summary.failures, "failure"), FormatCount(episodes, "episode"));
   if (episodes > 0) {
     text += fmt::format(" ({:.1f}%)", 100.0 * static_cast<double>(summary.failures) /
                                           static_cast<double>(episodes));

@@ -266,7 +266,9 @@ Eigen::Vector3d RegionSampler::MapPolygon(const double* u) const {
     length[k] = hi - lo;
   }
   double total = 0;
-  for (size_t k = 0; k + 1 < xs.size(); ++k) total += 0.5 * (length[k] + length[k + 1]) * (xs[k + 1] - xs[k]);
+  for (size_t k = 0; k + 1 < xs.size(); ++k) {
+    total += 0.5 * (length[k] + length[k + 1]) * (xs[k + 1] - xs[k]);
+  }
   double remaining = u[0] * total;
   double x = xs.back();
   for (size_t k = 0; k + 1 < xs.size(); ++k) {

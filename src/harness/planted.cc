@@ -33,14 +33,14 @@ class PlantedController : public Controller {
       result.extra = {{"cube", cube}, {"distance_to_region_m", distance_m}};
       if (distance_m <= 0) {
         result.outcome = "planted-failure";
-        result.detail = fmt::format("{} is inside the planted failure disk (r = {} m around "
-                                    "({}, {}))",
-                                    cube, failure_.radius_m, failure_.p_center_xy.x(),
-                                    failure_.p_center_xy.y());
+        result.detail = fmt::format(
+            "{} is inside the planted failure disk (r = {} m around "
+            "({}, {}))",
+            cube, failure_.radius_m, failure_.p_center_xy.x(), failure_.p_center_xy.y());
       } else {
         result.outcome = "success";
-        result.detail = fmt::format("{} is {:.3f} m from the planted failure disk", cube,
-                                    distance_m);
+        result.detail =
+            fmt::format("{} is {:.3f} m from the planted failure disk", cube, distance_m);
       }
       return result;
     }

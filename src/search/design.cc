@@ -3,12 +3,11 @@
 #include "search/design.h"
 
 #include <algorithm>
+#include <boost/random/sobol.hpp>
 #include <cmath>
 #include <mutex>
 #include <numbers>
 #include <stdexcept>
-
-#include <boost/random/sobol.hpp>
 
 #include "geometry/random.h"
 
@@ -89,10 +88,14 @@ std::vector<uint64_t> FindKorobovGenerator(uint64_t n, int dimension) {
 
 const char* DesignName(DesignKind kind) {
   switch (kind) {
-    case DesignKind::kRandom: return "random";
-    case DesignKind::kSobol: return "sobol";
-    case DesignKind::kHalton: return "halton";
-    case DesignKind::kLattice: return "lattice";
+    case DesignKind::kRandom:
+      return "random";
+    case DesignKind::kSobol:
+      return "sobol";
+    case DesignKind::kHalton:
+      return "halton";
+    case DesignKind::kLattice:
+      return "lattice";
   }
   return "random";
 }
@@ -100,8 +103,8 @@ const char* DesignName(DesignKind kind) {
 std::vector<std::string> DesignNames() { return {"random", "sobol", "halton", "lattice"}; }
 
 bool ParseDesign(const std::string& name, DesignKind* kind) {
-  for (DesignKind k : {DesignKind::kRandom, DesignKind::kSobol, DesignKind::kHalton,
-                       DesignKind::kLattice}) {
+  for (DesignKind k :
+       {DesignKind::kRandom, DesignKind::kSobol, DesignKind::kHalton, DesignKind::kLattice}) {
     if (name == DesignName(k)) {
       *kind = k;
       return true;
@@ -203,13 +206,15 @@ void Design::CalcPoint(uint64_t seed, uint64_t index, double* u) const {
       const uint64_t copy = index / size_, k = index % size_;
       geometry::Rng shift(design_seed, 3 + copy);
       for (int j = 0; j < dimension_; ++j) {
-        const double x = static_cast<double>((k * lattice_generator_[j]) % size_) /
-                             static_cast<double>(size_) + shift.Uniform01();
+        const double x =
+            static_cast<double>((k * lattice_generator_[j]) % size_) / static_cast<double>(size_) +
+            shift.Uniform01();
         u[j] = std::min(x - std::floor(x), 1.0 - 0x1.0p-53);
       }
       return;
     }
-    case DesignKind::kRandom: break;
+    case DesignKind::kRandom:
+      break;
   }
 }
 

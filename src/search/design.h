@@ -13,8 +13,8 @@
 namespace prs::search {
 
 enum class DesignKind {
-  kRandom,   // no design: every attempt reads the stream (today's sampling, bit for bit)
-  kSobol,    // Sobol' points (Boost.Random's sobol, Joe–Kuo directions) with a random digital shift
+  kRandom,  // no design: every attempt reads the stream (today's sampling, bit for bit)
+  kSobol,  // Sobol' points (Boost.Random's sobol, Joe–Kuo directions) with a random digital shift
   kHalton,   // Halton points with random digit permutations per dimension
   kLattice,  // a rank-1 Korobov lattice of `size` points with a random shift
 };

@@ -2,14 +2,14 @@
 // program fingerprint.
 #include "search/like.h"
 
+#include <fmt/format.h>
+
 #include <algorithm>
 #include <cmath>
 #include <map>
+#include <nlohmann/json.hpp>
 #include <optional>
 #include <stdexcept>
-
-#include <fmt/format.h>
-#include <nlohmann/json.hpp>
 
 #include "geometry/random.h"
 
@@ -30,8 +30,9 @@ uint64_t Fnv1a(uint64_t hash, std::string_view bytes) {
 nlohmann::json ParseRecord(const std::string& line, const std::string& where) {
   auto record = nlohmann::json::parse(line, nullptr, /*allow_exceptions=*/false);
   if (!record.is_object() || !record.contains("outcome") || !record["outcome"].is_string()) {
-    throw std::runtime_error(where + ": not an episode record (a JSON object with an "
-                                     "\"outcome\"); give the -o file of prs search or prs test");
+    throw std::runtime_error(where +
+                             ": not an episode record (a JSON object with an "
+                             "\"outcome\"); give the -o file of prs search or prs test");
   }
   return record;
 }
@@ -44,8 +45,9 @@ std::optional<std::vector<double>> CheckCoordinates(const nlohmann::json& record
   if (coordinates == record.end()) return std::nullopt;
   const auto spec = record.find("spec");
   if (spec == record.end() || !spec->is_string()) {
-    throw std::runtime_error(where + ": the record has coordinates but no \"spec\" hash, so "
-                                     "it cannot be tied to this program");
+    throw std::runtime_error(where +
+                             ": the record has coordinates but no \"spec\" hash, so "
+                             "it cannot be tied to this program");
   }
   if (spec->get<std::string>() != spec_hash) {
     throw std::runtime_error(where + ": the record was written for another program (spec " +
@@ -117,18 +119,19 @@ FailureSet ReadFailures(const std::vector<std::string>& lines, const std::string
     if (selected) set.coordinates.push_back(*coordinates);
   }
   if (with_coordinates == 0) {
-    throw std::runtime_error(path + ": no record has scene coordinates; write records with "
-                                    "prs search -o, or prs test --design sobol -o");
+    throw std::runtime_error(path +
+                             ": no record has scene coordinates; write records with "
+                             "prs search -o, or prs test --design sobol -o");
   }
   if (set.coordinates.empty()) {
     std::string found;
     for (const auto& [name, n] : outcomes) {
       found += fmt::format("{}{} {}", found.empty() ? "" : ", ", name, n);
     }
-    throw std::runtime_error(path + ": no record with " +
-                             (outcome.empty() ? std::string("a failing outcome")
-                                              : "the outcome '" + outcome + "'") +
-                             " (outcomes: " + found + ")");
+    throw std::runtime_error(
+        path + ": no record with " +
+        (outcome.empty() ? std::string("a failing outcome") : "the outcome '" + outcome + "'") +
+        " (outcomes: " + found + ")");
   }
   return set;
 }
@@ -140,16 +143,17 @@ std::vector<double> ReadRecordCoordinates(const std::vector<std::string>& lines,
     return ReadFailures(lines, path, "", spec_hash, dimension).coordinates.front();
   }
   if (line < 0 || line > static_cast<int64_t>(lines.size())) {
-    throw std::runtime_error(fmt::format("{}: has {} lines; there is no line {}", path,
-                                         lines.size(), line));
+    throw std::runtime_error(
+        fmt::format("{}: has {} lines; there is no line {}", path, lines.size(), line));
   }
   const std::string where = fmt::format("{}:{}", path, line);
   const auto record = ParseRecord(lines[line - 1], where);
   std::optional<std::vector<double>> coordinates =
       CheckCoordinates(record, where, spec_hash, dimension);
   if (!coordinates) {
-    throw std::runtime_error(where + ": the record has no scene coordinates; write records with "
-                                     "prs search -o, or prs test --design sobol -o");
+    throw std::runtime_error(where +
+                             ": the record has no scene coordinates; write records with "
+                             "prs search -o, or prs test --design sobol -o");
   }
   return *coordinates;
 }

@@ -5,15 +5,14 @@
 // for deeper models.
 #include "search/report.h"
 
+#include <fmt/format.h>
+
 #include <algorithm>
 #include <cmath>
 #include <map>
+#include <nlohmann/json.hpp>
 #include <numeric>
 #include <stdexcept>
-
-#include <fmt/format.h>
-#include <nlohmann/json.hpp>
-
 
 namespace prs::search {
 namespace {
@@ -131,7 +130,9 @@ std::string FormatScatterSvg(const FeatureTable& table, const std::vector<bool>&
   if (!(x_hi > x_lo)) x_hi = x_lo + 1;
   if (!(y_hi > y_lo)) y_hi = y_lo + 1;
   auto px = [&](double x) { return kMargin + (x - x_lo) / (x_hi - x_lo) * (kW - 2 * kMargin); };
-  auto py = [&](double y) { return kH - kMargin - (y - y_lo) / (y_hi - y_lo) * (kH - 2 * kMargin); };
+  auto py = [&](double y) {
+    return kH - kMargin - (y - y_lo) / (y_hi - y_lo) * (kH - 2 * kMargin);
+  };
   std::string svg = fmt::format(
       "<svg xmlns=\"http://www.w3.org/2000/svg\" width=\"{0}\" height=\"{1}\" "
       "font-family=\"sans-serif\" font-size=\"12\">\n<rect width=\"{0}\" height=\"{1}\" "
@@ -168,8 +169,9 @@ std::vector<ReportRecord> ParseReportRecords(const std::vector<std::string>& lin
     const std::string where = fmt::format("{}:{}", path, n + 1);
     if (!j.is_object() || !j.contains("outcome") || !j["outcome"].is_string() ||
         !j.contains("index") || !j["index"].is_number_unsigned()) {
-      throw std::runtime_error(where + ": not an episode record (a JSON object with \"index\" and "
-                                       "\"outcome\"); give the -o file of prs test or prs search");
+      throw std::runtime_error(where +
+                               ": not an episode record (a JSON object with \"index\" and "
+                               "\"outcome\"); give the -o file of prs test or prs search");
     }
     ReportRecord r;
     r.line = static_cast<int64_t>(n + 1);
@@ -325,9 +327,10 @@ std::vector<FailureMode> FindFailureModes(const FeatureTable& table,
         features.push_back(s.feature);
         const std::string condition = fmt::format("{} {} {}", table.names[s.feature],
                                                   k == 0 ? "≤" : ">", FormatNumber(s.threshold));
-        stack.push_back({&node.children[k],
-                         step.description.empty() ? condition : step.description + " and " + condition,
-                         std::move(features), std::move(side[k])});
+        stack.push_back(
+            {&node.children[k],
+             step.description.empty() ? condition : step.description + " and " + condition,
+             std::move(features), std::move(side[k])});
       }
       continue;
     }
@@ -387,8 +390,8 @@ std::string FormatFailureReport(const std::vector<ReportRecord>& records,
     ++outcomes[records[i].outcome];
   }
   const int64_t n = static_cast<int64_t>(records.size());
-  std::string md = fmt::format("# Failure report: {}\n\n{} episodes; {} failed.\n\n",
-                               options.title, n, FormatRate(failures, n));
+  std::string md = fmt::format("# Failure report: {}\n\n{} episodes; {} failed.\n\n", options.title,
+                               n, FormatRate(failures, n));
   md += "| outcome | episodes | share |\n|---|---|---|\n";
   for (const auto& [name, count] : outcomes) {
     md += fmt::format("| {} | {} | {:.1f} % |\n", name, count, 100 * Rate(count, n));
@@ -405,12 +408,12 @@ std::string FormatFailureReport(const std::vector<ReportRecord>& records,
     return md;
   }
   const Split& top = splits.front();
-  md += fmt::format(
-      "The strongest single split: **{}**. There, {} fail; elsewhere {}.\n\n",
-      DescribeSide(table, top, true), FormatRate(top.failures_side, top.n_side),
-      FormatRate(top.failures_other, top.n_other));
-  md += "| rank | feature | failure-rich side | fail there | fail elsewhere | gain (bits) |\n"
-        "|---|---|---|---|---|---|\n";
+  md += fmt::format("The strongest single split: **{}**. There, {} fail; elsewhere {}.\n\n",
+                    DescribeSide(table, top, true), FormatRate(top.failures_side, top.n_side),
+                    FormatRate(top.failures_other, top.n_other));
+  md +=
+      "| rank | feature | failure-rich side | fail there | fail elsewhere | gain (bits) |\n"
+      "|---|---|---|---|---|---|\n";
   for (size_t i = 0; i < splits.size() && i < 10; ++i) {
     const Split& s = splits[i];
     md += fmt::format("| {} | {} | {} | {} | {} | {:.3f} |\n", i + 1, table.names[s.feature],
@@ -418,19 +421,19 @@ std::string FormatFailureReport(const std::vector<ReportRecord>& records,
                       FormatRate(s.failures_other, s.n_other), s.gain);
   }
   md += "\n## A depth-2 decision tree\n\n";
-  FormatTree(table, GrowTree(table, failed, 2,
-                             std::max<int64_t>(5, n / 50)),
-             0, &md);
+  FormatTree(table, GrowTree(table, failed, 2, std::max<int64_t>(5, n / 50)), 0, &md);
   md += "\n## Failure modes\n\n";
   const std::vector<FailureMode> modes = FindFailureModes(table, failed);
   int64_t in_modes = 0;
   for (const FailureMode& mode : modes) in_modes += static_cast<int64_t>(mode.members.size());
-  md += fmt::format("The failures fall into {} (the failure-rich leaves of a depth-3 tree that "
-                    "hold at least 10 % of them); {} of {} failures are in one.\n\n",
-                    modes.size() == 1 ? std::string("one mode") : fmt::format("{} modes", modes.size()),
-                    in_modes, failures);
-  md += "| mode | where | fail there | mean of the top features | representative |\n"
-        "|---|---|---|---|---|\n";
+  md += fmt::format(
+      "The failures fall into {} (the failure-rich leaves of a depth-3 tree that "
+      "hold at least 10 % of them); {} of {} failures are in one.\n\n",
+      modes.size() == 1 ? std::string("one mode") : fmt::format("{} modes", modes.size()), in_modes,
+      failures);
+  md +=
+      "| mode | where | fail there | mean of the top features | representative |\n"
+      "|---|---|---|---|---|\n";
   for (size_t m = 0; m < modes.size(); ++m) {
     const FailureMode& mode = modes[m];
     std::string means;
@@ -444,8 +447,7 @@ std::string FormatFailureReport(const std::vector<ReportRecord>& records,
       const std::string stem = rep.saved_scene.substr(0, rep.saved_scene.rfind('.'));
       picture = fmt::format(" ![index {}]({}.png)", rep.index, stem);
     }
-    md += fmt::format("| {} | {} | {} | {} | index {} (line {}, {}){} |\n", m + 1,
-                      mode.description,
+    md += fmt::format("| {} | {} | {} | {} | index {} (line {}, {}){} |\n", m + 1, mode.description,
                       FormatRate(static_cast<int64_t>(mode.members.size()), mode.n), means,
                       rep.index, rep.line, rep.outcome, picture);
   }
@@ -474,8 +476,9 @@ std::string FormatFailureReport(const std::vector<ReportRecord>& records,
   size_t d = 0;
   for (const auto& r : records) d = std::max(d, r.coordinates.size());
   if (d > 0) {
-    md += "## Outcomes by scene coordinate (failure rate in fifths of [0, 1))\n\n"
-          "| coordinate | 0–0.2 | 0.2–0.4 | 0.4–0.6 | 0.6–0.8 | 0.8–1 |\n|---|---|---|---|---|---|\n";
+    md +=
+        "## Outcomes by scene coordinate (failure rate in fifths of [0, 1))\n\n"
+        "| coordinate | 0–0.2 | 0.2–0.4 | 0.4–0.6 | 0.6–0.8 | 0.8–1 |\n|---|---|---|---|---|---|\n";
     for (size_t j = 0; j < d; ++j) {
       int64_t k[5] = {0}, m[5] = {0};
       for (size_t r = 0; r < records.size(); ++r) {

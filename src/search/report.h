@@ -41,11 +41,11 @@ FeatureTable BuildFeatureTable(const std::vector<ReportRecord>& records);
 /// The best one-threshold split of one feature: failures are more frequent on one side.
 struct Split {
   int feature = -1;
-  double threshold = 0;          // the side is feature <= threshold, or > threshold
-  bool failures_below = true;    // the failure-rich side is <= threshold
+  double threshold = 0;                     // the side is feature <= threshold, or > threshold
+  bool failures_below = true;               // the failure-rich side is <= threshold
   int64_t n_side = 0, failures_side = 0;    // the failure-rich side
   int64_t n_other = 0, failures_other = 0;  // the rest
-  double gain = 0;               // information gain of the split (bits)
+  double gain = 0;                          // information gain of the split (bits)
 };
 
 /// Every feature's best split, by gain (largest first). Empty when there are no failures or
@@ -57,8 +57,8 @@ std::pair<double, double> CalcWilsonInterval(int64_t k, int64_t n);
 
 /// A node of the depth-2 tree: a split, and per side either a further split or a leaf.
 struct TreeNode {
-  std::optional<Split> split;   // none: a leaf
-  int64_t n = 0, failures = 0;  // the records that reach it
+  std::optional<Split> split;      // none: a leaf
+  int64_t n = 0, failures = 0;     // the records that reach it
   std::vector<TreeNode> children;  // [<= threshold, > threshold] when split
 };
 TreeNode GrowTree(const FeatureTable& table, const std::vector<bool>& failed, int depth,
@@ -74,14 +74,15 @@ struct FailureMode {
   std::vector<size_t> members;  // the failing records in it (indexes into the records)
   int64_t n = 0;                // every record in it
   size_t representative = 0;
-  std::vector<double> mean;     // per feature, over the members
+  std::vector<double> mean;  // per feature, over the members
 };
 std::vector<FailureMode> FindFailureModes(const FeatureTable& table,
                                           const std::vector<bool>& failed);
 
 struct ReportOptions {
-  std::string title;            // e.g. the results file's name
-  std::string svg_path;         // when set, a scatter plot of the two best features (its file name is embedded)
+  std::string title;  // e.g. the results file's name
+  std::string
+      svg_path;  // when set, a scatter plot of the two best features (its file name is embedded)
 };
 
 /// The whole report as Markdown (and the scatter plot as SVG text into *svg when asked).

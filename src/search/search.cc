@@ -43,15 +43,16 @@ class ProposalPoints : public sampling::AttemptPoints {
                  const std::vector<double>& std)
       : mode_(mode), dimension_(dimension), first_index_(first_index) {
     if (mode == Mode::kSobol) design_ = std::make_unique<Design>(DesignKind::kSobol, dimension);
-    if (mode == Mode::kGaussian) gaussian_ = std::make_unique<GaussianPoints>(mean, std, kUniformShare);
+    if (mode == Mode::kGaussian)
+      gaussian_ = std::make_unique<GaussianPoints>(mean, std, kUniformShare);
   }
 
   int dimension() const override { return dimension_; }
 
   bool Point(uint64_t seed, uint64_t index, int64_t attempt, double* u) const override {
     if (attempt >= kMaxProposalAttempts) return false;
-    geometry::Rng rng(seed ^ kProposalSalt ^ (static_cast<uint64_t>(attempt) * 0x9E3779B97F4A7C15ULL),
-                      index);
+    geometry::Rng rng(
+        seed ^ kProposalSalt ^ (static_cast<uint64_t>(attempt) * 0x9E3779B97F4A7C15ULL), index);
     switch (mode_) {
       case Mode::kSobol:
         if (attempt == 0) {
@@ -78,14 +79,15 @@ class ProposalPoints : public sampling::AttemptPoints {
           return true;
         }
         break;  // the given point was rejected: i.i.d. points after it
-      case Mode::kUniform: break;
+      case Mode::kUniform:
+        break;
     }
     for (int j = 0; j < dimension_; ++j) u[j] = rng.Uniform01();
     return true;
   }
 
-  std::vector<std::vector<double>> centres;     // kChain, kGiven: per episode slot
-  double step = kFirstStep;                     // kChain
+  std::vector<std::vector<double>> centres;  // kChain, kGiven: per episode slot
+  double step = kFirstStep;                  // kChain
 
  private:
   Mode mode_;
@@ -94,8 +96,6 @@ class ProposalPoints : public sampling::AttemptPoints {
   std::unique_ptr<Design> design_;
   std::unique_ptr<GaussianPoints> gaussian_;
 };
-
-double Badness(const harness::EpisodeRecord& record) { return CalcBadness(record); }
 
 bool HasScore(const std::vector<harness::EpisodeRecord>& records) {
   return std::any_of(records.begin(), records.end(),
@@ -111,7 +111,7 @@ std::vector<harness::EpisodeRecord> BestSoFar(const std::vector<harness::Episode
   const size_t keep = std::min(all.size(), batch.size());
   std::partial_sort(all.begin(), all.begin() + static_cast<std::ptrdiff_t>(keep), all.end(),
                     [](auto* a, auto* b) {
-                      const double ba = Badness(*a), bb = Badness(*b);
+                      const double ba = CalcBadness(*a), bb = CalcBadness(*b);
                       return ba < bb || (ba == bb && a->index < b->index);
                     });
   std::vector<harness::EpisodeRecord> best;
@@ -128,11 +128,14 @@ void UpdateCrossEntropy(const std::vector<harness::EpisodeRecord>& batch, int di
     if (static_cast<int>(r.coordinates.size()) == dimension) ranked.push_back(&r);
   }
   const bool scored = HasScore(batch);
-  const auto failed = [](const harness::EpisodeRecord* r) { return r->result.outcome != "success"; };
+  const auto failed = [](const harness::EpisodeRecord* r) {
+    return r->result.outcome != "success";
+  };
   const int64_t failures = std::count_if(ranked.begin(), ranked.end(), failed);
   // Outcomes alone say nothing about where to go until something failed.
   if (!scored && failures == 0) return;
-  std::stable_sort(ranked.begin(), ranked.end(), [](auto* a, auto* b) { return Badness(*a) < Badness(*b); });
+  std::stable_sort(ranked.begin(), ranked.end(),
+                   [](auto* a, auto* b) { return CalcBadness(*a) < CalcBadness(*b); });
   size_t elite = static_cast<size_t>(std::ceil(kEliteFraction * static_cast<double>(batch.size())));
   if (!scored) elite = static_cast<size_t>(failures);
   elite = std::clamp<size_t>(elite, 1, ranked.size());
@@ -156,7 +159,7 @@ void UpdateChains(const std::vector<harness::EpisodeRecord>& batch, uint64_t see
   for (size_t c = 0; c < batch.size() && c < centres->size(); ++c) {
     const harness::EpisodeRecord& r = batch[c];
     if (r.coordinates.size() != (*centres)[c].size()) continue;  // drawn from the stream
-    const double b = Badness(r);
+    const double b = CalcBadness(r);
     geometry::Rng rng(seed ^ kAcceptSalt, (static_cast<uint64_t>(generation) << 32) + c);
     const bool accept = generation == 0 || b <= (*badness)[c] ||
                         rng.Uniform01() < std::exp(-(b - (*badness)[c]) / temperature);
@@ -182,6 +185,35 @@ void CheckProposal(const std::vector<std::vector<double>>& points, int64_t count
   }
 }
 
+// Simulated annealing's chains: their current points and badness, the temperature and step.
+struct AnnealState {
+  std::vector<std::vector<double>> centres;
+  std::vector<double> badness;
+  double temperature = 1;
+  double step = kFirstStep;
+
+  void Update(const std::vector<harness::EpisodeRecord>& batch, uint64_t seed, int generation,
+              int64_t slots, int dimension) {
+    if (generation == 0) {
+      centres.assign(slots, std::vector<double>(dimension, 0.5));
+      badness.assign(slots, INFINITY);
+      // The first temperature: the spread of the first generation's badness.
+      double sum = 0, sum2 = 0;
+      for (const auto& r : batch) {
+        sum += CalcBadness(r);
+        sum2 += CalcBadness(r) * CalcBadness(r);
+      }
+      const double n = static_cast<double>(batch.size());
+      const double spread = std::sqrt(std::max(0.0, sum2 / n - (sum / n) * (sum / n)));
+      temperature = kFirstTemperature * (spread > 0 ? spread : 1);
+    } else {
+      temperature *= kDecay;
+      step = std::max(kMinStep, step * kDecay);
+    }
+    UpdateChains(batch, seed, generation, temperature, &centres, &badness);
+  }
+};
+
 }  // namespace
 
 double CalcBadness(const harness::EpisodeRecord& record) {
@@ -192,10 +224,14 @@ double CalcBadness(const harness::EpisodeRecord& record) {
 
 const char* StrategyName(Strategy strategy) {
   switch (strategy) {
-    case Strategy::kRandom: return "random";
-    case Strategy::kCrossEntropy: return "ce";
-    case Strategy::kAnneal: return "anneal";
-    case Strategy::kExternal: return "external";
+    case Strategy::kRandom:
+      return "random";
+    case Strategy::kCrossEntropy:
+      return "ce";
+    case Strategy::kAnneal:
+      return "anneal";
+    case Strategy::kExternal:
+      return "external";
   }
   return "random";
 }
@@ -235,16 +271,14 @@ SearchSummary RunSearch(const lang::CompiledProgram& program,
   summary.coordinates = sampling::DescribeCoordinates(program, options.run.sample);
   const int d = static_cast<int>(summary.coordinates.size());
   if (d == 0) {
-    throw NothingToSearch("this program draws nothing at random: every scene is the same, so "
-                          "there is nothing to search");
+    throw NothingToSearch(
+        "this program draws nothing at random: every scene is the same, so "
+        "there is nothing to search");
   }
   const uint64_t seed = options.run.seed;
   const std::string spec_hash = CalcSpecHash(program);
   std::vector<double> mean(d, 0.5), std(d, 1.0);  // wide: about uniform at first
-  std::vector<std::vector<double>> centres;
-  std::vector<double> badness;
-  double temperature = 1;
-  double step = kFirstStep;
+  AnnealState anneal;
 
   int64_t done = 0;
   for (int generation = 0; done < options.budget; ++generation) {
@@ -254,13 +288,13 @@ SearchSummary RunSearch(const lang::CompiledProgram& program,
     if (options.strategy == Strategy::kExternal) {
       mode = Mode::kGiven;
     } else if (options.strategy != Strategy::kRandom) {
-      mode = generation == 0 ? Mode::kSobol
+      mode = generation == 0                               ? Mode::kSobol
              : options.strategy == Strategy::kCrossEntropy ? Mode::kGaussian
-                                                            : Mode::kChain;
+                                                           : Mode::kChain;
     }
     ProposalPoints points(mode, d, static_cast<uint64_t>(done), mean, std);
-    points.centres = centres;
-    points.step = step;
+    points.centres = anneal.centres;
+    points.step = anneal.step;
     if (mode == Mode::kChain) points.centres.resize(count, std::vector<double>(d, 0.5));
     if (mode == Mode::kGiven) {
       points.centres = options.propose(summary.records, count, d, generation);
@@ -296,23 +330,7 @@ SearchSummary RunSearch(const lang::CompiledProgram& program,
     if (options.strategy == Strategy::kCrossEntropy) {
       UpdateCrossEntropy(BestSoFar(summary.records, ran.records), d, &mean, &std);
     } else if (options.strategy == Strategy::kAnneal) {
-      if (generation == 0) {
-        centres.assign(batch, std::vector<double>(d, 0.5));
-        badness.assign(batch, INFINITY);
-        // The first temperature: the spread of the first generation's badness.
-        double sum = 0, sum2 = 0;
-        for (const auto& r : ran.records) {
-          sum += Badness(r);
-          sum2 += Badness(r) * Badness(r);
-        }
-        const double n = static_cast<double>(ran.records.size());
-        const double spread = std::sqrt(std::max(0.0, sum2 / n - (sum / n) * (sum / n)));
-        temperature = kFirstTemperature * (spread > 0 ? spread : 1);
-      } else {
-        temperature *= kDecay;
-        step = std::max(kMinStep, step * kDecay);
-      }
-      UpdateChains(ran.records, seed, generation, temperature, &centres, &badness);
+      anneal.Update(ran.records, seed, generation, batch, d);
     }
     for (auto& record : ran.records) summary.records.push_back(std::move(record));
     done += count;

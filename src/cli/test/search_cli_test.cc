@@ -20,9 +20,8 @@ std::vector<json> ReadJsonLines(const fs::path& path) {
 TEST_F(PrsTest, SearchWritesRecordsTheSameForAnyThreadCount) {
   const std::string one = (dir_ / "one.jsonl").string(), two = (dir_ / "two.jsonl").string();
   for (const auto& [out, threads] : {std::pair{one, "1"}, std::pair{two, "2"}}) {
-    const Result r = Run({"search", Example("table_cube.prs"), "--controller",
-                          "planted-1-percent", "--budget", "200", "-s", "4", "--threads",
-                          threads, "-o", out});
+    const Result r = Run({"search", Example("table_cube.prs"), "--controller", "planted-1-percent",
+                          "--budget", "200", "-s", "4", "--threads", threads, "-o", out});
     ASSERT_EQ(r.exit_code, 0) << r.err;
     EXPECT_NE(r.out.find("planted-failure"), std::string::npos) << r.out;
     EXPECT_NE(r.out.find("generation"), std::string::npos) << r.out;
@@ -45,20 +44,20 @@ TEST_F(PrsTest, SearchRefusesBadRequests) {
                   "--budget", "10", "--strategy", "cee"});
   EXPECT_EQ(r.exit_code, 2);
   EXPECT_NE(r.err.find("did you mean 'ce'"), std::string::npos) << r.err;
-  r = Run({"search", Example("table_cube.prs"), "--controller", "planted-1-percent",
-           "--budget", "10", "--strategy", "bo"});
+  r = Run({"search", Example("table_cube.prs"), "--controller", "planted-1-percent", "--budget",
+           "10", "--strategy", "bo"});
   EXPECT_EQ(r.exit_code, 2);
   EXPECT_NE(r.err.find("strategy=\"bo\""), std::string::npos) << r.err;
-  r = Run({"search", Example("table_cube.prs"), "--controller", "planted-1-percent", "--budget",
-           "0"});
+  r = Run(
+      {"search", Example("table_cube.prs"), "--controller", "planted-1-percent", "--budget", "0"});
   EXPECT_EQ(r.exit_code, 2);
   EXPECT_NE(r.err.find("--budget"), std::string::npos) << r.err;
   const std::string fixed = Write("fixed.prs", "Object at Vector3D(0, 0, 0)\n");
   r = Run({"search", fixed, "--controller", "planted-1-percent", "--budget", "10"});
   EXPECT_EQ(r.exit_code, 2);
   EXPECT_NE(r.err.find("draws nothing at random"), std::string::npos) << r.err;
-  r = Run({"search", Example("table_cube.prs"), "--controller", "planted-1-percnt", "--budget",
-           "10"});
+  r = Run(
+      {"search", Example("table_cube.prs"), "--controller", "planted-1-percnt", "--budget", "10"});
   EXPECT_EQ(r.exit_code, 2);
   EXPECT_NE(r.err.find("did you mean 'planted-1-percent'"), std::string::npos) << r.err;
   // An --exec controller whose score is not a finite number: every episode says so.
@@ -99,9 +98,9 @@ TEST_F(PrsTest, DesignsGiveOtherValidScenesReproducibly) {
   for (const json& record : ReadJsonLines(dir_ / "s.jsonl")) {
     EXPECT_FALSE(record.contains("regenerate")) << "a searched scene is not (seed, index)'s";
   }
-  const Result many = Run({"test", Example("table_cube.prs"), "--controller", "planted-1-percent",
-                           "-n", "600", "-s", "2", "--design", "sobol", "-o",
-                           (dir_ / "m.jsonl").string()});
+  const Result many =
+      Run({"test", Example("table_cube.prs"), "--controller", "planted-1-percent", "-n", "600",
+           "-s", "2", "--design", "sobol", "-o", (dir_ / "m.jsonl").string()});
   ASSERT_EQ(many.exit_code, 0) << many.err;
   int checked = 0;
   for (const json& record : ReadJsonLines(dir_ / "m.jsonl")) {
@@ -140,8 +139,8 @@ TEST_F(PrsTest, NearDrawsSmallChangesOfOneEpisode) {
   ASSERT_EQ(r.exit_code, 0) << r.err;
   const json episode = ReadJsonLines(results)[41];
   const double x = episode["features"]["Cube#5.x"], y = episode["features"]["Cube#5.y"];
-  r = Run({"sample", Example("table_cube.prs"), "--near", results + ":42", "--scale", "0.01",
-           "-n", "20", "-s", "5"});
+  r = Run({"sample", Example("table_cube.prs"), "--near", results + ":42", "--scale", "0.01", "-n",
+           "20", "-s", "5"});
   ASSERT_EQ(r.exit_code, 0) << r.err;
   std::stringstream lines(r.out);
   int scenes = 0;
@@ -151,7 +150,8 @@ TEST_F(PrsTest, NearDrawsSmallChangesOfOneEpisode) {
       if (object["class"] != "Cube") continue;
       // A 0.01 change of each coordinate moves the cube by centimetres, not across its tray.
       EXPECT_LT(std::hypot(object["position"][0].get<double>() - x,
-                           object["position"][1].get<double>() - y), 0.08);
+                           object["position"][1].get<double>() - y),
+                0.08);
     }
   }
   EXPECT_EQ(scenes, 20);

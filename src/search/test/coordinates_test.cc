@@ -64,10 +64,9 @@ std::vector<sampling::SampledScene> SampleMany(const lang::CompiledProgram& prog
   options.threads = 2;
   options.sample.points = points;
   std::vector<sampling::SampledScene> scenes;
-  sampling::SampleBatch(program, options,
-                        {.prepare = {}, .consume = [&](sampling::BatchScene&& s) {
-                           scenes.push_back(std::move(s.sampled));
-                         }});
+  sampling::SampleBatch(program, options, {.prepare = {}, .consume = [&](sampling::BatchScene&& s) {
+                                             scenes.push_back(std::move(s.sampled));
+                                           }});
   return scenes;
 }
 
@@ -153,7 +152,8 @@ TEST(SceneCoordinatesTest, ASceneIsAFunctionOfItsPoint) {
   for (size_t i = 0; i < a.scene.objects.size(); ++i) {
     EXPECT_EQ(a.scene.objects[i].p_WO, b.scene.objects[i].p_WO) << i;
   }
-  EXPECT_EQ(a.coordinates, std::vector<double>({0.3, 0.2, 0.9, 0.6, 0.4, 0.5, 0.1, 0.95, 0.5, 0.5, 0.5}));
+  EXPECT_EQ(a.coordinates,
+            std::vector<double>({0.3, 0.2, 0.9, 0.6, 0.4, 0.5, 0.1, 0.95, 0.5, 0.5, 0.5}));
   // The cube's two coordinates move the cube within its tray: the far corner of its square
   // puts it far from the near corner.
   FixedPoint near({0.3, 0.2, 0.9, 0.6, 0.4, 0.5, 0.01, 0.01, 0.5, 0.5, 0.5});
@@ -166,7 +166,8 @@ TEST(SceneCoordinatesTest, ASceneIsAFunctionOfItsPoint) {
   const auto& tray_f = sampling::testing_checks::Find(f.scene, "tr_1");
   EXPECT_EQ(tray_n.p_WO, tray_f.p_WO);  // the tray's coordinates did not change
   const double moved = (sampling::testing_checks::FindClass(n.scene, "Cube").p_WO -
-                        sampling::testing_checks::FindClass(f.scene, "Cube").p_WO).norm();
+                        sampling::testing_checks::FindClass(f.scene, "Cube").p_WO)
+                           .norm();
   EXPECT_GT(moved, 0.3);  // nearly the diagonal of the tray's 0.19 x 0.4 m free area
 }
 
@@ -181,7 +182,8 @@ TEST(SceneCoordinatesTest, NamesComeFromTheProgram) {
   EXPECT_EQ(names[7], "Cube#5.position[1]");
   EXPECT_EQ(coordinates[7].draw, "position");
   EXPECT_EQ(names[8].rfind("Camera#6.position (", 0), 0u) << names[8];
-  const auto fixed = CompileOrDie("from model import *\nTable on V3D(0, 0, 0)\n", "examples/fixed.prs");
+  const auto fixed =
+      CompileOrDie("from model import *\nTable on V3D(0, 0, 0)\n", "examples/fixed.prs");
   EXPECT_TRUE(sampling::DescribeCoordinates(*fixed).empty());
   const auto widths = CompileOrDie(
       "from model import *\nt = Table on V3D(0, 0, 0), with width Range(1, 2)\n"

@@ -59,12 +59,12 @@ std::vector<std::vector<double>> SampleCoordinates(const lang::CompiledProgram& 
   options.threads = threads;
   options.sample.points = &points;
   std::vector<std::vector<double>> out;
-  sampling::SampleBatch(program, options,
-                        {.prepare = {}, .consume = [&](sampling::BatchScene&& s) {
-                           std::vector<double> u;
-                           for (int j : pick) u.push_back(s.sampled.coordinates.at(j));
-                           out.push_back(u);
-                         }});
+  sampling::SampleBatch(program, options, {.prepare = {}, .consume = [&](sampling::BatchScene&& s) {
+                                             std::vector<double> u;
+                                             for (int j : pick)
+                                               u.push_back(s.sampled.coordinates.at(j));
+                                             out.push_back(u);
+                                           }});
   return out;
 }
 
@@ -105,8 +105,10 @@ TEST(DesignTest, DesignsCoverTheCubePositionBetterThanIid) {
     const Design design(kind, d, kScenes);
     double design_cube = 0, design_all = 0;
     for (uint64_t seed = 1; seed <= kSeeds; ++seed) {
-      design_cube += CalcL2StarDiscrepancy(SampleCoordinates(*program, design, seed, kScenes, 2, cube));
-      design_all += CalcL2StarDiscrepancy(SampleCoordinates(*program, design, seed, kScenes, 2, all));
+      design_cube +=
+          CalcL2StarDiscrepancy(SampleCoordinates(*program, design, seed, kScenes, 2, cube));
+      design_all +=
+          CalcL2StarDiscrepancy(SampleCoordinates(*program, design, seed, kScenes, 2, all));
     }
     EXPECT_LT(design_cube, 0.5 * iid_cube) << DesignName(kind);
     // In all 11 dimensions the star discrepancy favours the digital nets; a rank-1 lattice

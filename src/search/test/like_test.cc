@@ -53,16 +53,15 @@ TEST(LikeTest, ScenesLikeTheFailuresFallInTheFailureRegion) {
   options.sample.points = &like;
   auto planted = harness::MakePlantedController(harness::PlantedOnePermille());
   int64_t in_region = 0;
-  sampling::SampleBatch(*program, options,
-                        {.prepare = {}, .consume = [&](sampling::BatchScene&& s) {
-                           // Still the program's scene: the same relations as every scene.
-                           using namespace sampling::testing_checks;
-                           ExpectCompletelyOn(FindClass(s.sampled.scene, "Cube"),
-                                              Find(s.sampled.scene, "tr_1"));
-                           ExpectCompletelyOn(Find(s.sampled.scene, "tr_1"),
-                                              Find(s.sampled.scene, "t"));
-                           in_region += planted->RunEpisode(s.sampled, "").outcome != "success";
-                         }});
+  sampling::SampleBatch(
+      *program, options,
+      {.prepare = {}, .consume = [&](sampling::BatchScene&& s) {
+         // Still the program's scene: the same relations as every scene.
+         using namespace sampling::testing_checks;
+         ExpectCompletelyOn(FindClass(s.sampled.scene, "Cube"), Find(s.sampled.scene, "tr_1"));
+         ExpectCompletelyOn(Find(s.sampled.scene, "tr_1"), Find(s.sampled.scene, "t"));
+         in_region += planted->RunEpisode(s.sampled, "").outcome != "success";
+       }});
   // I.i.d. scenes fall there 0.11 % of the time (about 2 in 2,000).
   EXPECT_GE(in_region, 200) << "of 2000";
 }
@@ -86,8 +85,8 @@ TEST(LikeTest, RecordsAreCheckedAgainstTheProgram) {
   EXPECT_NE(error_of(lines, "no-path", hash, d).find("(outcomes: planted-failure"),
             std::string::npos);
   // Another program: a changed source, or a -p override.
-  const auto other = CompileOrDie("from model import *\nTable on V3D(0, 0, Range(0, 1))\n",
-                                  "examples/other.prs");
+  const auto other =
+      CompileOrDie("from model import *\nTable on V3D(0, 0, Range(0, 1))\n", "examples/other.prs");
   EXPECT_NE(CalcSpecHash(*other), hash);
   EXPECT_NE(error_of(lines, "", CalcSpecHash(*other), d).find("another program"),
             std::string::npos);

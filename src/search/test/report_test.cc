@@ -22,9 +22,13 @@ std::vector<std::string> SyntheticRecords(int n, bool second_cause) {
     harness::EpisodeRecord r;
     r.index = static_cast<uint64_t>(i);
     const double x = rng.Uniform(-0.9, 0), y = rng.Uniform(-0.4, 0.4);
-    r.features = {{"t.x", 0.0},         {"t.y", 0.0},         {"Cube#5.x", x},
-                  {"Cube#5.y", y},      {"Camera#6.z", rng.Uniform(1.9, 2.1)},
-                  {"tr_1.x", rng.Uniform(-0.7, -0.2)}, {"tr_1.y", rng.Uniform(-0.1, 0.1)}};
+    r.features = {{"t.x", 0.0},
+                  {"t.y", 0.0},
+                  {"Cube#5.x", x},
+                  {"Cube#5.y", y},
+                  {"Camera#6.z", rng.Uniform(1.9, 2.1)},
+                  {"tr_1.x", rng.Uniform(-0.7, -0.2)},
+                  {"tr_1.y", rng.Uniform(-0.1, 0.1)}};
     const bool fails = x <= -0.75 || (second_cause && y > 0.3);
     r.result.outcome = fails ? "no-path" : "success";
     r.coordinates = {rng.Uniform01(), (x + 0.9) / 0.9};

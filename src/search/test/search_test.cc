@@ -90,10 +90,10 @@ SearchSummary Search(const lang::CompiledProgram& program, Strategy strategy, in
 
 TEST(SearchTest, CrossEntropyFindsThePlantedPermilleFailure) {
   const auto program = CompileTableCube();
-  const SearchSummary ce = Search(*program, Strategy::kCrossEntropy, 1000, 1, 2,
-                                  harness::PlantedOnePermille());
-  const SearchSummary iid = Search(*program, Strategy::kRandom, 1000, 1, 2,
-                                   harness::PlantedOnePermille());
+  const SearchSummary ce =
+      Search(*program, Strategy::kCrossEntropy, 1000, 1, 2, harness::PlantedOnePermille());
+  const SearchSummary iid =
+      Search(*program, Strategy::kRandom, 1000, 1, 2, harness::PlantedOnePermille());
   ASSERT_EQ(ce.records.size(), 1000u);
   EXPECT_EQ(ce.batch, 20);
   EXPECT_EQ(ce.generations, 50);
@@ -141,8 +141,8 @@ TEST(SearchTest, BadRequestsAreRefused) {
   const auto program = CompileTableCube();
   EXPECT_THROW(Search(*program, Strategy::kCrossEntropy, 0, 1, 1, harness::PlantedOnePercent()),
                std::invalid_argument);
-  const auto fixed = CompileOrDie("from model import *\nTable on V3D(0, 0, 0)\nCube on V3D(0, 0, 1)\n",
-                                  "examples/fixed.prs");
+  const auto fixed = CompileOrDie(
+      "from model import *\nTable on V3D(0, 0, 0)\nCube on V3D(0, 0, 1)\n", "examples/fixed.prs");
   try {
     Search(*fixed, Strategy::kCrossEntropy, 10, 1, 1, harness::PlantedOnePercent());
     ADD_FAILURE() << "a program without random draws was searched";
