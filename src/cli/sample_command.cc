@@ -3,6 +3,7 @@
 // terminal a progress bar, on stderr.
 #include <fmt/format.h>
 
+#include <charconv>
 #include <chrono>
 #include <memory>
 
@@ -137,7 +138,12 @@ class SceneWriterRun {
     const size_t colon = path.rfind(':');
     if (!args_.near.empty() && colon != std::string::npos && colon + 1 < path.size() &&
         path.find_first_not_of("0123456789", colon + 1) == std::string::npos) {
-      line = std::stoll(path.substr(colon + 1));
+      const char* digits = path.c_str() + colon + 1;
+      if (std::from_chars(digits, path.c_str() + path.size(), line).ec != std::errc()) {
+        PrintError("--near: no such line " + path.substr(colon + 1) + " in " +
+                   path.substr(0, colon));
+        return false;
+      }
       path.resize(colon);
     }
     const auto lines = ReadLines(path);

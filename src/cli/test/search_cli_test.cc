@@ -158,6 +158,9 @@ TEST_F(PrsTest, NearDrawsSmallChangesOfOneEpisode) {
   r = Run({"sample", Example("table_cube.prs"), "--near", results + ":101"});
   EXPECT_EQ(r.exit_code, 2);
   EXPECT_NE(r.err.find("there is no line 101"), std::string::npos) << r.err;
+  r = Run({"sample", Example("table_cube.prs"), "--near", results + ":99999999999999999999999"});
+  EXPECT_EQ(r.exit_code, 2);
+  EXPECT_NE(r.err.find("no such line"), std::string::npos) << r.err;
   r = Run({"sample", Example("table_cube.prs"), "--near", results, "--like", results});
   EXPECT_EQ(r.exit_code, 2);
 }
