@@ -31,5 +31,6 @@ CommandRunner ConfigureRenderCommand(CLI::App& command);
 CommandRunner ConfigureTestCommand(CLI::App& command);
 CommandRunner ConfigureSearchCommand(CLI::App& command);
 CommandRunner ConfigureReportCommand(CLI::App& command);
+CommandRunner ConfigureCampaignCommand(CLI::App& command);
 
 }  // namespace prs::cli

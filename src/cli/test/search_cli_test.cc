@@ -192,5 +192,43 @@ TEST_F(PrsTest, ReportNamesWhereTheControllerFails) {
   EXPECT_EQ(r.exit_code, 1);
 }
 
+TEST_F(PrsTest, CampaignShardsMergeIntoOneMachinesRun) {
+  const std::string dir = (dir_ / "campaign").string();
+  Result r = Run({"campaign", "init", dir, Example("table_cube.prs"), "--controller", "demo-reach",
+                  "-n", "40", "--shard-size", "7", "-s", "3"});
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  for (const char* k : {"5", "2", "0", "1", "4", "3"}) {
+    r = Run({"campaign", "run-shard", dir, k, "--threads", "1"});
+    ASSERT_EQ(r.exit_code, 0) << r.err;
+  }
+  r = Run({"campaign", "status", dir});
+  EXPECT_NE(r.out.find("6 of 6 done"), std::string::npos) << r.out;
+  const std::string merged = (dir_ / "merged.jsonl").string(),
+                    single = (dir_ / "single.jsonl").string();
+  r = Run({"campaign", "merge", dir, "-o", merged});
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  r = Run({"test", Example("table_cube.prs"), "--controller", "demo-reach", "-n", "40", "-s", "3",
+           "-o", single});
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  std::vector<json> a = ReadJsonLines(merged), b = ReadJsonLines(single);
+  for (std::vector<json>* records : {&a, &b}) {
+    for (json& record : *records) record.erase("wall_s");
+  }
+  EXPECT_EQ(a, b);
+  // A shard out of range, a truncated shard, and merge refusing an incomplete campaign.
+  r = Run({"campaign", "run-shard", dir, "6"});
+  EXPECT_EQ(r.exit_code, 2);
+  EXPECT_NE(r.err.find("there is no shard 6"), std::string::npos) << r.err;
+  fs::resize_file(dir + "/shards/shard-00002.jsonl", 5);
+  r = Run({"campaign", "status", dir});
+  EXPECT_NE(r.out.find("shard 2: bad"), std::string::npos) << r.out;
+  r = Run({"campaign", "merge", dir, "-o", merged});
+  EXPECT_EQ(r.exit_code, 2);
+  EXPECT_NE(r.err.find("shards not done: 2"), std::string::npos) << r.err;
+  r = Run({"campaign", "status", (dir_ / "nothing").string()});
+  EXPECT_EQ(r.exit_code, 2);
+  EXPECT_NE(r.err.find("prs campaign init"), std::string::npos) << r.err;
+}
+
 }  // namespace
 }  // namespace prs::cli

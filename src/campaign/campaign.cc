@@ -1,0 +1,286 @@
+// Campaign directories: init (copy the spec, write the plan), shard files with sidecars, status
+// from the files, running one shard, merging in index order.
+#include "campaign/campaign.h"
+
+#include <fcntl.h>
+#include <fmt/format.h>
+#include <unistd.h>
+
+#include <chrono>
+#include <filesystem>
+#include <fstream>
+#include <map>
+#include <nlohmann/json.hpp>
+#include <sstream>
+
+#include "output/line_writer.h"
+#include "output/scene_json.h"
+#include "sampling/batch.h"
+#include "search/like.h"
+
+namespace prs::campaign {
+namespace fs = std::filesystem;
+namespace {
+
+uint64_t Fnv1a(std::string_view bytes) {
+  uint64_t hash = 0xCBF29CE484222325ULL;
+  for (unsigned char c : bytes) {
+    hash ^= c;
+    hash *= 0x100000001B3ULL;
+  }
+  return hash;
+}
+
+std::string ReadWhole(const std::string& path, bool* ok) {
+  std::ifstream in(path, std::ios::binary);
+  *ok = static_cast<bool>(in);
+  std::stringstream text;
+  text << in.rdbuf();
+  return text.str();
+}
+
+// Writes `text` to `path` atomically: PATH.partial, fsync, rename.
+void WriteAtomically(const std::string& path, const std::string& text) {
+  output::LineWriter writer(path);
+  if (!text.empty()) writer.AddLine(std::string_view(text).substr(0, text.size() - 1));
+  writer.Commit();
+}
+
+nlohmann::json ToJson(const CampaignSpec& s) {
+  nlohmann::json params = nlohmann::json::array();
+  for (const auto& [name, value] : s.params) params.push_back({name, value});
+  return {{"format", "prs-campaign/1"},
+          {"id", s.id},
+          {"kind", s.kind},
+          {"main_file", s.main_file},
+          {"scenario_words", s.scenario_words},
+          {"params", params},
+          {"naive", s.naive},
+          {"max_attempts", s.max_attempts},
+          {"seed", s.seed},
+          {"count", s.count},
+          {"shard_size", s.shard_size},
+          {"controller", s.controller},
+          {"exec", s.exec},
+          {"timeout_s", s.timeout_s},
+          {"spec_hash", s.spec_hash},
+          {"version", s.version}};
+}
+
+std::string SidecarPath(const std::string& dir, uint64_t k) {
+  return ShardPath(dir, k) + ".done.json";
+}
+
+}  // namespace
+
+uint64_t CampaignSpec::size(uint64_t k) const {
+  return k + 1 < shards() ? shard_size : count - first(k);
+}
+
+std::string ShardPath(const std::string& dir, uint64_t k) {
+  return fmt::format("{}/shards/shard-{:05d}.jsonl", dir, k);
+}
+
+CampaignSpec InitCampaign(const std::string& dir, const lang::CompiledProgram& program,
+                          CampaignSpec spec) {
+  if (spec.count == 0 || spec.shard_size == 0) {
+    throw CampaignError("a campaign needs at least one scene (-n) and a shard size of at least 1");
+  }
+  std::error_code error;
+  if (fs::exists(dir, error) && !fs::is_empty(dir, error)) {
+    throw CampaignError(dir + " exists and is not empty; a campaign needs a directory of its own");
+  }
+  fs::create_directories(fs::path(dir) / "spec", error);
+  fs::create_directories(fs::path(dir) / "shards", error);
+  if (error) throw CampaignError("cannot create " + dir + ": " + error.message());
+  std::map<std::string, std::string> copied;  // name -> original path
+  for (size_t f = 0; f < program.sources.file_count(); ++f) {
+    const std::string& path = program.sources.path(static_cast<lang::FileId>(f));
+    const std::string name = fs::path(path).filename().string();
+    const auto [it, fresh] = copied.emplace(name, path);
+    if (!fresh) {
+      throw CampaignError("two files of the scenario are both called " + name + " (" + it->second +
+                          " and " + path + "); rename one so the campaign can hold both");
+    }
+    WriteAtomically(fmt::format("{}/spec/{}", dir, name),
+                    std::string(program.sources.text(static_cast<lang::FileId>(f))));
+    if (f == 0) spec.main_file = "spec/" + name;
+  }
+  spec.spec_hash = search::CalcSpecHash(program);
+  spec.id = fmt::format(
+      "{:016x}",
+      Fnv1a(spec.spec_hash + std::to_string(::getpid()) +
+            std::to_string(std::chrono::system_clock::now().time_since_epoch().count())));
+  WriteAtomically(dir + "/campaign.json", ToJson(spec).dump(2) + "\n");
+  return spec;
+}
+
+CampaignSpec ReadCampaign(const std::string& dir) {
+  const std::string path = dir + "/campaign.json";
+  bool ok = false;
+  const std::string text = ReadWhole(path, &ok);
+  if (!ok) {
+    throw CampaignError("cannot read " + path + ": is " + dir +
+                        " a campaign directory (made by prs campaign init)?");
+  }
+  const auto j = nlohmann::json::parse(text, nullptr, /*allow_exceptions=*/false);
+  try {
+    if (!j.is_object() || j.value("format", "") != "prs-campaign/1") throw std::exception();
+    CampaignSpec s;
+    s.id = j.at("id");
+    s.kind = j.at("kind");
+    s.main_file = j.at("main_file");
+    s.scenario_words = j.at("scenario_words").get<std::vector<std::string>>();
+    for (const auto& p : j.at("params")) s.params.emplace_back(p.at(0), p.at(1));
+    s.naive = j.at("naive");
+    s.max_attempts = j.at("max_attempts");
+    s.seed = j.at("seed");
+    s.count = j.at("count");
+    s.shard_size = j.at("shard_size");
+    s.controller = j.at("controller");
+    s.exec = j.at("exec");
+    s.timeout_s = j.at("timeout_s");
+    s.spec_hash = j.at("spec_hash");
+    s.version = j.at("version");
+    if ((s.kind != "test" && s.kind != "sample") || s.count == 0 || s.shard_size == 0) {
+      throw std::exception();
+    }
+    return s;
+  } catch (const std::exception&) {
+    throw CampaignError(path + " is not a campaign file this prs can read (format prs-campaign/1)");
+  }
+}
+
+std::unique_ptr<lang::CompiledProgram> CompileCampaign(const std::string& dir,
+                                                       const CampaignSpec& spec) {
+  lang::DiagnosticEngine diagnostics;
+  lang::CompileOptions options;
+  options.search_path = {dir + "/spec"};
+  options.param_overrides = spec.params;
+  auto program = lang::CompileFile(dir + "/" + spec.main_file, options, diagnostics);
+  if (diagnostics.has_errors()) {
+    std::string text;
+    for (const auto& d : diagnostics.diagnostics())
+      text += lang::RenderDiagnostic(d, program->sources);
+    throw CampaignError("the campaign's copy of the scenario does not compile:\n" + text);
+  }
+  if (search::CalcSpecHash(*program) != spec.spec_hash) {
+    throw CampaignError("the scenario in " + dir + "/spec changed since prs campaign init (spec " +
+                        search::CalcSpecHash(*program) + ", the campaign's is " + spec.spec_hash +
+                        "); start a new campaign for a changed scenario");
+  }
+  return program;
+}
+
+ShardStatus CheckShard(const std::string& dir, const CampaignSpec& spec, uint64_t k) {
+  const std::string path = ShardPath(dir, k);
+  std::error_code error;
+  const bool data = fs::exists(path, error);
+  const bool sidecar = fs::exists(SidecarPath(dir, k), error);
+  if (!data || !sidecar) {
+    if (fs::exists(path + ".partial", error))
+      return {ShardStatus::State::kRunning, path + ".partial"};
+    if (data)
+      return {ShardStatus::State::kBad, "its .done.json is missing (interrupted at the end?)"};
+    return {ShardStatus::State::kMissing, ""};
+  }
+  bool ok = false;
+  const auto meta = nlohmann::json::parse(ReadWhole(SidecarPath(dir, k), &ok), nullptr, false);
+  const std::string content = ReadWhole(path, &ok);
+  if (!meta.is_object()) return {ShardStatus::State::kBad, "its .done.json is not JSON"};
+  if (meta.value("campaign", "") != spec.id) {
+    return {ShardStatus::State::kBad, "it was written by another campaign"};
+  }
+  if (meta.value("spec", "") != spec.spec_hash || meta.value("version", "") != spec.version) {
+    return {ShardStatus::State::kBad, "it was written for another spec or prs version"};
+  }
+  if (meta.value("bytes", uint64_t{0}) != content.size() ||
+      meta.value("checksum", "") != fmt::format("{:016x}", Fnv1a(content))) {
+    return {ShardStatus::State::kBad, "its file was changed or truncated after it was written"};
+  }
+  if (meta.value("lines", uint64_t{0}) != spec.size(k)) {
+    return {ShardStatus::State::kBad, "it holds the wrong number of lines"};
+  }
+  return {ShardStatus::State::kDone, ""};
+}
+
+void WriteShard(const std::string& dir, const CampaignSpec& spec, uint64_t k,
+                const std::vector<std::string>& lines) {
+  std::error_code error;
+  fs::remove(SidecarPath(dir, k), error);  // an old sidecar never vouches for new data
+  std::string content;
+  for (const std::string& line : lines) content += line + "\n";
+  WriteAtomically(ShardPath(dir, k), content);
+  const nlohmann::json meta = {{"campaign", spec.id},
+                               {"shard", k},
+                               {"spec", spec.spec_hash},
+                               {"version", spec.version},
+                               {"lines", lines.size()},
+                               {"bytes", content.size()},
+                               {"checksum", fmt::format("{:016x}", Fnv1a(content))}};
+  WriteAtomically(SidecarPath(dir, k), meta.dump() + "\n");
+}
+
+void RunShard(const std::string& dir, const CampaignSpec& spec,
+              const lang::CompiledProgram& program, uint64_t k,
+              const harness::ControllerFactory* factory, int threads,
+              const std::atomic<bool>* cancel) {
+  if (k >= spec.shards()) {
+    throw CampaignError(
+        fmt::format("there is no shard {}: the campaign has shards 0 to {}", k, spec.shards() - 1));
+  }
+  sampling::SampleOptions sample;
+  sample.max_attempts = spec.max_attempts;
+  sample.run.mode = spec.naive ? lang::SamplingMode::kNaive : lang::SamplingMode::kRegion;
+  std::vector<std::string> lines;
+  if (spec.kind == "test") {
+    harness::RunOptions run;
+    run.sample = sample;
+    run.seed = spec.seed;
+    run.start = spec.first(k);
+    run.count = static_cast<int64_t>(spec.size(k));
+    run.threads = threads;
+    run.scenario_args = spec.scenario_words;
+    run.cancel = cancel;
+    run.on_record = [&](const harness::EpisodeRecord& r) {
+      lines.push_back(harness::FormatRecordJson(r));
+    };
+    harness::RunEpisodes(program, *factory, run);
+  } else {
+    sampling::BatchOptions batch;
+    batch.sample = sample;
+    batch.seed = spec.seed;
+    batch.start = spec.first(k);
+    batch.count = static_cast<int64_t>(spec.size(k));
+    batch.threads = threads;
+    batch.cancel = cancel;
+    sampling::SampleBatch(program, batch, {.prepare = {}, .consume = [&](sampling::BatchScene&& s) {
+                                             lines.push_back(output::FormatSceneJson(s.sampled));
+                                           }});
+  }
+  WriteShard(dir, spec, k, lines);
+}
+
+std::vector<std::string> MergeShards(const std::string& dir, const CampaignSpec& spec, bool partial,
+                                     std::vector<uint64_t>* skipped) {
+  std::vector<std::string> lines;
+  std::string not_done;
+  for (uint64_t k = 0; k < spec.shards(); ++k) {
+    const ShardStatus status = CheckShard(dir, spec, k);
+    if (status.state != ShardStatus::State::kDone) {
+      if (skipped) skipped->push_back(k);
+      if (not_done.size() < 200) not_done += fmt::format("{}{}", not_done.empty() ? "" : ", ", k);
+      continue;
+    }
+    bool ok = false;
+    std::stringstream content(ReadWhole(ShardPath(dir, k), &ok));
+    for (std::string line; std::getline(content, line);) lines.push_back(line);
+  }
+  if (!not_done.empty() && !partial) {
+    throw CampaignError("shards not done: " + not_done +
+                        " (prs campaign status says why; run them, or merge with --partial)");
+  }
+  return lines;
+}
+
+}  // namespace prs::campaign

@@ -1,0 +1,94 @@
+// Campaigns (docs/cluster.md): a test or sample run of N episodes or scenes cut into shards that
+// any machine can run alone, from a self-describing directory: the spec and its imports copied
+// in, the options, the shard plan. Shards are written atomically with a sidecar that ties them
+// to their campaign, so status and merge can tell done from missing, truncated or foreign, and a
+// merged campaign equals one machine's run of the same N and seed.
+#pragma once
+
+#include <atomic>
+#include <cstdint>
+#include <memory>
+#include <optional>
+#include <stdexcept>
+#include <string>
+#include <utility>
+#include <vector>
+
+#include "harness/harness.h"
+#include "lang/lang.h"
+
+namespace prs::campaign {
+
+/// DIR/campaign.json: everything a shard needs, written once by InitCampaign.
+struct CampaignSpec {
+  std::string id;                           // unique per init: ties shards to this campaign
+  std::string kind;                         // "test" (episode records) or "sample" (scene lines)
+  std::string main_file;                    // the scenario, relative to DIR ("spec/table_cube.prs")
+  std::vector<std::string> scenario_words;  // the FILE -I -p --naive given at init
+  std::vector<std::pair<std::string, std::string>> params;  // -p NAME=VALUE
+  bool naive = false;
+  int64_t max_attempts = 10'000;
+  uint64_t seed = 0;
+  uint64_t count = 0;
+  uint64_t shard_size = 1000;
+  std::string controller;  // test: a built-in controller, or
+  std::string exec;        // test: an --exec command
+  double timeout_s = 60;
+  std::string spec_hash;  // search::CalcSpecHash of the copied program
+  std::string version;    // the prs that made it
+
+  uint64_t shards() const { return (count + shard_size - 1) / shard_size; }
+  /// The scenes of shard k: [first, first + size).
+  uint64_t first(uint64_t k) const { return k * shard_size; }
+  uint64_t size(uint64_t k) const;
+};
+
+/// Thrown with a message a user can act on (it names the file and what to do).
+class CampaignError : public std::runtime_error {
+ public:
+  using std::runtime_error::runtime_error;
+};
+
+/// Creates DIR (which must not exist or be empty): copies every source file of `program` into
+/// DIR/spec/ (flat; two files of one name are an error), then writes DIR/campaign.json
+/// atomically. Fills spec.id, spec.main_file and spec.spec_hash. Throws CampaignError.
+CampaignSpec InitCampaign(const std::string& dir, const lang::CompiledProgram& program,
+                          CampaignSpec spec);
+
+/// Reads DIR/campaign.json. Throws CampaignError for a missing or malformed file.
+CampaignSpec ReadCampaign(const std::string& dir);
+
+/// Compiles DIR's copy of the scenario and checks it is the one init saw (the spec hash).
+/// Throws CampaignError (with the rendered diagnostics on compile errors).
+std::unique_ptr<lang::CompiledProgram> CompileCampaign(const std::string& dir,
+                                                       const CampaignSpec& spec);
+
+/// DIR/shards/shard-KKKKK.jsonl and its sidecar .done.json.
+std::string ShardPath(const std::string& dir, uint64_t k);
+
+/// Where a shard stands, from its files alone.
+struct ShardStatus {
+  enum class State { kDone, kMissing, kRunning, kBad } state = State::kMissing;
+  std::string why;  // for kBad: what is wrong; for kRunning: the partial file
+};
+ShardStatus CheckShard(const std::string& dir, const CampaignSpec& spec, uint64_t k);
+
+/// Writes shard k's lines atomically (PATH.partial, fsync, rename) and then its sidecar
+/// (campaign id, spec hash, version, lines, bytes, checksum). Re-running a shard rewrites both.
+void WriteShard(const std::string& dir, const CampaignSpec& spec, uint64_t k,
+                const std::vector<std::string>& lines);
+
+/// Runs shard k: the episodes (kind "test", with `factory`) or scenes (kind "sample") of
+/// its range, on `threads` threads, and writes it. Throws CampaignError for a shard index out
+/// of range, and what harness::RunEpisodes / sampling::SampleBatch throw.
+void RunShard(const std::string& dir, const CampaignSpec& spec,
+              const lang::CompiledProgram& program, uint64_t k,
+              const harness::ControllerFactory* factory, int threads,
+              const std::atomic<bool>* cancel);
+
+/// The lines of every done shard in index order. Throws CampaignError naming the shards that
+/// are not done, unless `partial` (then those are skipped and listed in *skipped).
+std::vector<std::string> MergeShards(const std::string& dir, const CampaignSpec& spec, bool partial,
+                                     std::vector<uint64_t>* skipped);
+
+}  // namespace prs::campaign
