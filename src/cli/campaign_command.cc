@@ -71,9 +71,10 @@ int RunInit(const CampaignArgs& args) {
 
 int RunShardCommand(const CampaignArgs& args) {
   InterruptWatch interrupt;
+  std::unique_ptr<lang::CompiledProgram> program;  // for locating a run-time error
   try {
     const campaign::CampaignSpec spec = campaign::ReadCampaign(args.dir);
-    const auto program = campaign::CompileCampaign(args.dir, spec);
+    program = campaign::CompileCampaign(args.dir, spec);
     std::optional<harness::ControllerFactory> factory;
     if (spec.kind == "test") {
       factory = ChooseController({spec.controller, spec.exec, spec.timeout_s}, interrupt.flag());
@@ -89,8 +90,7 @@ int RunShardCommand(const CampaignArgs& args) {
     PrintNote("interrupted; the shard was not written (run it again)");
     return kExitInterruptedBase + interrupt.signal_number();
   } catch (const lang::ScenarioError& error) {
-    PrintError(error.diagnostic().message);
-    return kExitScenarioError;
+    return ReportScenarioError(error, program->sources);  // exit 1, or 3 for a sampling failure
   } catch (const std::exception& error) {
     PrintError(error.what());
     return kExitScenarioError;
