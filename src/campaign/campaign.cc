@@ -283,4 +283,51 @@ std::vector<std::string> MergeShards(const std::string& dir, const CampaignSpec&
   return lines;
 }
 
+std::vector<uint64_t> FindUnfinishedShards(const std::string& dir, const CampaignSpec& spec) {
+  std::vector<uint64_t> shards;
+  for (uint64_t k = 0; k < spec.shards(); ++k) {
+    if (CheckShard(dir, spec, k).state != ShardStatus::State::kDone) shards.push_back(k);
+  }
+  return shards;
+}
+
+std::string FormatSlurmScript(const std::string& dir, const CampaignSpec& spec,
+                              const std::vector<uint64_t>& shards, const SlurmOptions& options) {
+  // The array's indices: runs of consecutive shards as ranges ("0-7,9,12-15").
+  std::string array;
+  for (size_t i = 0; i < shards.size();) {
+    size_t j = i;
+    while (j + 1 < shards.size() && shards[j + 1] == shards[j] + 1) ++j;
+    array += fmt::format(
+        "{}{}", array.empty() ? "" : ",",
+        i == j ? fmt::format("{}", shards[i]) : fmt::format("{}-{}", shards[i], shards[j]));
+    i = j + 1;
+  }
+  if (options.max_running > 0) array += fmt::format("%{}", options.max_running);
+  auto quote = [](const std::string& word) {
+    std::string quoted = "'";
+    for (char c : word) quoted += c == '\'' ? std::string("'\\''") : std::string(1, c);
+    return quoted + "'";
+  };
+  std::string script = fmt::format(
+      "#!/bin/bash\n"
+      "# prs campaign {} ({}): {} of {} shard(s), written by prs campaign slurm.\n"
+      "#SBATCH --job-name=prs-{}\n"
+      "#SBATCH --array={}\n"
+      "#SBATCH --output={}/logs/shard-%a.out\n"
+      "#SBATCH --error={}/logs/shard-%a.err\n"
+      "#SBATCH --cpus-per-task={}\n",
+      spec.id, spec.kind, shards.size(), spec.shards(), spec.id.substr(0, 8), array, dir, dir,
+      options.cpus_per_task);
+  if (!options.partition.empty()) script += "#SBATCH --partition=" + options.partition + "\n";
+  if (!options.time.empty()) script += "#SBATCH --time=" + options.time + "\n";
+  if (!options.mem.empty()) script += "#SBATCH --mem=" + options.mem + "\n";
+  script += fmt::format(
+      "set -eu\n"
+      "exec {} campaign run-shard {} \"$SLURM_ARRAY_TASK_ID\" --threads "
+      "\"${{SLURM_CPUS_PER_TASK:-{}}}\"\n",
+      quote(options.prs), quote(dir), options.cpus_per_task);
+  return script;
+}
+
 }  // namespace prs::campaign

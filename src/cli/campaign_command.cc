@@ -3,6 +3,8 @@
 // exactly what one machine's `prs test` / `prs sample` writes.
 #include <fmt/format.h>
 
+#include <cstdlib>
+#include <filesystem>
 #include <iostream>
 #include <memory>
 #include <nlohmann/json.hpp>
@@ -31,6 +33,10 @@ struct CampaignArgs {
   // merge
   std::string output;
   bool partial = false;
+  // slurm
+  campaign::SlurmOptions slurm;
+  std::string extra;  // more sbatch arguments
+  bool print_only = false;
 };
 
 int RunInit(const CampaignArgs& args) {
@@ -157,6 +163,62 @@ int RunMerge(const CampaignArgs& args) {
   }
 }
 
+// Writes DIR/slurm/submit-N.sh for the unfinished shards and submits it with sbatch (unless
+// --print): the first submission and every resume are the same command.
+int RunSlurm(CampaignArgs args) {
+  namespace fs = std::filesystem;
+  try {
+    const campaign::CampaignSpec spec = campaign::ReadCampaign(args.dir);
+    const std::string dir = fs::absolute(args.dir).lexically_normal().string();
+    const std::vector<uint64_t> shards = campaign::FindUnfinishedShards(dir, spec);
+    if (shards.empty()) {
+      PrintNote("every shard is done; nothing to submit (prs campaign merge " + args.dir + ")");
+      return kExitSuccess;
+    }
+    std::error_code error;
+    args.slurm.prs = fs::read_symlink("/proc/self/exe", error).string();
+    if (error) args.slurm.prs = "prs";
+    fs::create_directories(dir + "/logs", error);
+    fs::create_directories(dir + "/slurm", error);
+    int n = 0;
+    while (fs::exists(fmt::format("{}/slurm/submit-{}.sh", dir, n))) ++n;
+    const std::string script = fmt::format("{}/slurm/submit-{}.sh", dir, n);
+    const std::string text = campaign::FormatSlurmScript(dir, spec, shards, args.slurm);
+    output::LineWriter writer(script);
+    writer.AddLine(std::string_view(text).substr(0, text.size() - 1));
+    writer.Commit();
+    if (args.print_only) {
+      std::cout << text << std::flush;
+      PrintNote(fmt::format("{} for {} written to {} (not submitted: --print)",
+                            FormatCount(static_cast<int64_t>(shards.size()), "array task"),
+                            FormatCount(static_cast<int64_t>(shards.size()), "shard"), script));
+      return kExitSuccess;
+    }
+    if (std::system("command -v sbatch >/dev/null 2>&1") != 0) {
+      PrintError(
+          "sbatch is not installed here: run prs campaign slurm on a machine of the "
+          "cluster (Debian: the slurm-client package), or submit " +
+          script + " yourself");
+      return kExitScenarioError;
+    }
+    const std::string command = "sbatch --parsable " + args.extra + " '" + script + "'";
+    const int status = std::system(command.c_str());
+    if (status != 0) {
+      PrintError("sbatch refused the job (its message is above); the script is " + script);
+      return kExitScenarioError;
+    }
+    PrintNote(fmt::format("submitted {} (the job id above); follow with prs campaign status {}",
+                          FormatCount(static_cast<int64_t>(shards.size()), "shard"), args.dir));
+    return kExitSuccess;
+  } catch (const campaign::CampaignError& error) {
+    PrintError(error.what());
+    return kExitUsage;
+  } catch (const std::exception& error) {
+    PrintError(error.what());
+    return kExitScenarioError;
+  }
+}
+
 }  // namespace
 
 CommandRunner ConfigureCampaignCommand(CLI::App& command) {
@@ -191,11 +253,27 @@ CommandRunner ConfigureCampaignCommand(CLI::App& command) {
       ->required()
       ->check(NonEmptyPath());
   merge->add_flag("--partial", args->partial, "merge the done shards even when some are not");
-  return [args, init, run, status, merge] {
+  CLI::App* slurm = command.add_subcommand(
+      "slurm", "submit the unfinished shards as a Slurm job array (again to resume)");
+  slurm->add_option("DIR", args->dir, "the campaign directory")->required();
+  slurm->add_option("--partition", args->slurm.partition, "sbatch --partition")->type_name("P");
+  slurm->add_option("--time", args->slurm.time, "sbatch --time, per shard")->type_name("T");
+  slurm->add_option("--mem", args->slurm.mem, "sbatch --mem, per shard")->type_name("M");
+  slurm->add_option("--cpus-per-task", args->slurm.cpus_per_task, "CPUs (threads) per shard")
+      ->type_name("C")
+      ->check(IntegerInRange(1, 1024))
+      ->capture_default_str();
+  slurm->add_option("--max-running", args->slurm.max_running, "at most this many tasks at once")
+      ->type_name("N")
+      ->check(IntegerAtLeast(1));
+  slurm->add_option("--extra", args->extra, "more sbatch arguments, as one string")
+      ->type_name("ARGS");
+  slurm->add_flag("--print", args->print_only, "write and print the script, do not submit it");
+  return [args, init, run, status, slurm] {
     if (init->parsed()) return RunInit(*args);
     if (run->parsed()) return RunShardCommand(*args);
     if (status->parsed()) return RunStatus(*args);
-    (void)merge;
+    if (slurm->parsed()) return RunSlurm(*args);
     return RunMerge(*args);
   };
 }
