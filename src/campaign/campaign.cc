@@ -22,15 +22,6 @@ namespace prs::campaign {
 namespace fs = std::filesystem;
 namespace {
 
-uint64_t Fnv1a(std::string_view bytes) {
-  uint64_t hash = 0xCBF29CE484222325ULL;
-  for (unsigned char c : bytes) {
-    hash ^= c;
-    hash *= 0x100000001B3ULL;
-  }
-  return hash;
-}
-
 std::string ReadWhole(const std::string& path, bool* ok) {
   std::ifstream in(path, std::ios::binary);
   *ok = static_cast<bool>(in);
@@ -109,7 +100,7 @@ CampaignSpec InitCampaign(const std::string& dir, const lang::CompiledProgram& p
   spec.spec_hash = search::CalcSpecHash(program);
   spec.id = fmt::format(
       "{:016x}",
-      Fnv1a(spec.spec_hash + std::to_string(::getpid()) +
+      search::CalcFnv1a(spec.spec_hash + std::to_string(::getpid()) +
             std::to_string(std::chrono::system_clock::now().time_since_epoch().count())));
   WriteAtomically(dir + "/campaign.json", ToJson(spec).dump(2) + "\n");
   return spec;
@@ -195,7 +186,7 @@ ShardStatus CheckShard(const std::string& dir, const CampaignSpec& spec, uint64_
     return {ShardStatus::State::kBad, "it was written for another spec or prs version"};
   }
   if (meta.value("bytes", uint64_t{0}) != content.size() ||
-      meta.value("checksum", "") != fmt::format("{:016x}", Fnv1a(content))) {
+      meta.value("checksum", "") != fmt::format("{:016x}", search::CalcFnv1a(content))) {
     return {ShardStatus::State::kBad, "its file was changed or truncated after it was written"};
   }
   if (meta.value("lines", uint64_t{0}) != spec.size(k)) {
@@ -217,7 +208,7 @@ void WriteShard(const std::string& dir, const CampaignSpec& spec, uint64_t k,
                                {"version", spec.version},
                                {"lines", lines.size()},
                                {"bytes", content.size()},
-                               {"checksum", fmt::format("{:016x}", Fnv1a(content))}};
+                               {"checksum", fmt::format("{:016x}", search::CalcFnv1a(content))}};
   WriteAtomically(SidecarPath(dir, k), meta.dump() + "\n");
 }
 

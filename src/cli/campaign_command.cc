@@ -103,9 +103,24 @@ int RunShardCommand(const CampaignArgs& args) {
   }
 }
 
-int RunStatus(const CampaignArgs& args) {
+// Reads DIR's campaign and runs `body` with it. A CampaignError (not a campaign, a changed
+// spec, shards not done) is a usage error (exit 2); other failures (a file that cannot be
+// written) exit 1.
+template <typename Body>
+int WithCampaign(const std::string& dir, Body body) {
   try {
-    const campaign::CampaignSpec spec = campaign::ReadCampaign(args.dir);
+    return body(campaign::ReadCampaign(dir));
+  } catch (const campaign::CampaignError& error) {
+    PrintError(error.what());
+    return kExitUsage;
+  } catch (const std::exception& error) {
+    PrintError(error.what());
+    return kExitScenarioError;
+  }
+}
+
+int RunStatus(const CampaignArgs& args) {
+  return WithCampaign(args.dir, [&](const campaign::CampaignSpec& spec) {
     int64_t done = 0, missing = 0, running = 0, bad = 0;
     for (uint64_t k = 0; k < spec.shards(); ++k) {
       const campaign::ShardStatus s = campaign::CheckShard(args.dir, spec, k);
@@ -124,15 +139,11 @@ int RunStatus(const CampaignArgs& args) {
     std::cout << fmt::format("{}: {} of {} done, {} missing, {} running or stopped, {} bad\n",
                              args.dir, done, spec.shards(), missing, running, bad);
     return kExitSuccess;
-  } catch (const campaign::CampaignError& error) {
-    PrintError(error.what());
-    return kExitUsage;
-  }
+  });
 }
 
 int RunMerge(const CampaignArgs& args) {
-  try {
-    const campaign::CampaignSpec spec = campaign::ReadCampaign(args.dir);
+  return WithCampaign(args.dir, [&](const campaign::CampaignSpec& spec) {
     std::vector<uint64_t> skipped;
     const std::vector<std::string> lines =
         campaign::MergeShards(args.dir, spec, args.partial, &skipped);
@@ -154,21 +165,14 @@ int RunMerge(const CampaignArgs& args) {
         args.output,
         skipped.empty() ? "" : fmt::format(" ({} skipped)", FormatCount(skipped.size(), "shard"))));
     return kExitSuccess;
-  } catch (const campaign::CampaignError& error) {
-    PrintError(error.what());
-    return kExitUsage;
-  } catch (const std::exception& error) {
-    PrintError(error.what());
-    return kExitScenarioError;
-  }
+  });
 }
 
 // Writes DIR/slurm/submit-N.sh for the unfinished shards and submits it with sbatch (unless
 // --print): the first submission and every resume are the same command.
 int RunSlurm(CampaignArgs args) {
   namespace fs = std::filesystem;
-  try {
-    const campaign::CampaignSpec spec = campaign::ReadCampaign(args.dir);
+  return WithCampaign(args.dir, [&](const campaign::CampaignSpec& spec) {
     const std::string dir = fs::absolute(args.dir).lexically_normal().string();
     const std::vector<uint64_t> shards = campaign::FindUnfinishedShards(dir, spec);
     if (shards.empty()) {
@@ -201,7 +205,8 @@ int RunSlurm(CampaignArgs args) {
           script + " yourself");
       return kExitScenarioError;
     }
-    const std::string command = "sbatch --parsable " + args.extra + " '" + script + "'";
+    const std::string command =
+        "sbatch --parsable " + args.extra + " " + harness::QuoteForShell(script);
     const int status = std::system(command.c_str());
     if (status != 0) {
       PrintError("sbatch refused the job (its message is above); the script is " + script);
@@ -210,13 +215,7 @@ int RunSlurm(CampaignArgs args) {
     PrintNote(fmt::format("submitted {} (the job id above); follow with prs campaign status {}",
                           FormatCount(static_cast<int64_t>(shards.size()), "shard"), args.dir));
     return kExitSuccess;
-  } catch (const campaign::CampaignError& error) {
-    PrintError(error.what());
-    return kExitUsage;
-  } catch (const std::exception& error) {
-    PrintError(error.what());
-    return kExitScenarioError;
-  }
+  });
 }
 
 }  // namespace

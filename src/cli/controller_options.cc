@@ -3,6 +3,8 @@
 
 #include <fmt/format.h>
 
+#include <filesystem>
+
 #include "cli/builtin_controllers.h"
 #include "cli/text_table.h"
 #include "harness/exec_controller.h"
@@ -84,6 +86,18 @@ std::vector<std::string> MakeScenarioWords(const ScenarioArgs& scenario,
   for (const std::string& param : scenario.params) words.insert(words.end(), {"-p", param});
   if (sampling.naive) words.push_back("--naive");
   return words;
+}
+
+bool OpenEpisodeOutputs(const std::string& output, const std::string& save_failures_dir,
+                        std::unique_ptr<output::LineWriter>* records) {
+  try {
+    if (!output.empty()) *records = std::make_unique<output::LineWriter>(output);
+    if (!save_failures_dir.empty()) std::filesystem::create_directories(save_failures_dir);
+    return true;
+  } catch (const std::exception& error) {
+    PrintError(error.what());
+    return false;
+  }
 }
 
 std::string FormatOutcomeTable(const std::vector<harness::EpisodeRecord>& records) {

@@ -4,12 +4,14 @@
 #pragma once
 
 #include <atomic>
+#include <memory>
 #include <optional>
 #include <string>
 #include <vector>
 
 #include "cli/common.h"
 #include "harness/harness.h"
+#include "output/line_writer.h"
 
 namespace prs::cli {
 
@@ -33,6 +35,11 @@ std::optional<harness::ControllerFactory> ChooseController(const ControllerArgs&
 /// What `prs sample` needs to rewrite one of these scenes: FILE, -I, -p, --naive.
 std::vector<std::string> MakeScenarioWords(const ScenarioArgs& scenario,
                                            const SamplingArgs& sampling);
+
+/// Opens -o OUT (when given) as *records and creates --save-failures DIR (when given). Returns
+/// false after printing why one of them cannot be made.
+bool OpenEpisodeOutputs(const std::string& output, const std::string& save_failures_dir,
+                        std::unique_ptr<output::LineWriter>* records);
 
 /// outcome / count / share, with a total row (the paper's Table III).
 std::string FormatOutcomeTable(const std::vector<harness::EpisodeRecord>& records);

@@ -4,7 +4,6 @@
 #include <fmt/format.h>
 
 #include <algorithm>
-#include <filesystem>
 #include <iostream>
 #include <memory>
 #include <optional>
@@ -129,14 +128,7 @@ int RunTest(const TestArgs& args) {
   auto program = CompileScenario(args.scenario);
   if (!program) return kExitScenarioError;
   std::unique_ptr<output::LineWriter> records;
-  try {
-    if (!args.output.empty()) records = std::make_unique<output::LineWriter>(args.output);
-    if (!args.save_failures_dir.empty())
-      std::filesystem::create_directories(args.save_failures_dir);
-  } catch (const std::exception& error) {
-    PrintError(error.what());
-    return kExitScenarioError;
-  }
+  if (!OpenEpisodeOutputs(args.output, args.save_failures_dir, &records)) return kExitScenarioError;
   return RunAndReport(*program, *factory, args, records.get(), interrupt);
 }
 

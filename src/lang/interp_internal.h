@@ -236,6 +236,29 @@ class Interpreter {
   bool coordinates_done_ = false;
   int naming_object_ = -1;
   const std::string* naming_property_ = nullptr;
+  // While alive, draws are named after `property` of object `index` (scene coordinates); the
+  // names in force before come back when it ends, also when a rejection unwinds through it.
+  class NamingScope {
+   public:
+    NamingScope(Interpreter& interpreter, int index, const std::string* property)
+        : interpreter_(interpreter),
+          saved_object_(interpreter.naming_object_),
+          saved_property_(interpreter.naming_property_) {
+      interpreter.naming_object_ = index;
+      interpreter.naming_property_ = property;
+    }
+    ~NamingScope() {
+      interpreter_.naming_object_ = saved_object_;
+      interpreter_.naming_property_ = saved_property_;
+    }
+    NamingScope(const NamingScope&) = delete;
+    NamingScope& operator=(const NamingScope&) = delete;
+
+   private:
+    Interpreter& interpreter_;
+    int saved_object_;
+    const std::string* saved_property_;
+  };
   // Naive mode: the specifier that rejects the scene. As in the paper's tool, specifiers are
   // checked as constraints once the scene is complete, after collisions and the workspace, and
   // relative-position ones before containment ones (KeepsNaiveViolation).

@@ -35,13 +35,11 @@ Value Interpreter::CreateObject(const ObjectPlan& plan, SourceSpan span) {
   for (const PlanStep& step : plan.steps) {
     if (step.kind == PlanStepKind::kPosition) {
       static const std::string kPosition = "position";
-      const int saved_object = naming_object_;
-      const std::string* saved_property = naming_property_;
-      naming_object_ = index;  // draws in the position's specifiers are named after it
-      naming_property_ = &kPosition;
-      const Vector3d p = PlacePosition(plan, index, span);
-      naming_object_ = saved_object;
-      naming_property_ = saved_property;
+      Vector3d p;
+      {
+        const NamingScope naming(*this, index, &kPosition);  // draws in its specifiers
+        p = PlacePosition(plan, index, span);
+      }
       scene_.objects[index].p_WO = p;
       SetProperty(index, "position", Value(p), span);
     } else {
@@ -59,10 +57,7 @@ Value Interpreter::CreateObject(const ObjectPlan& plan, SourceSpan span) {
 
 void Interpreter::RunPlanStep(const PlanStep& step, int index, SourceSpan span) {
   // Draws made for this step are named after the property (scene coordinates).
-  const int saved_object = naming_object_;
-  const std::string* saved_property = naming_property_;
-  naming_object_ = index;
-  naming_property_ = &step.property;
+  const NamingScope naming(*this, index, &step.property);
   switch (step.kind) {
     case PlanStepKind::kDefault:
       SetProperty(index, step.property, EvalDefault(*step.default_value, index),
@@ -77,8 +72,6 @@ void Interpreter::RunPlanStep(const PlanStep& step, int index, SourceSpan span) 
     case PlanStepKind::kPosition:
       break;  // handled by CreateObject
   }
-  naming_object_ = saved_object;
-  naming_property_ = saved_property;
   (void)span;
 }
 

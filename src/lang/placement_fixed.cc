@@ -113,13 +113,8 @@ Vector3d Interpreter::SampleFixed(const FixedPlacement& placement, int index, So
   size_t i = 0;
   if (placement.pieces.size() > 1) {
     static const std::string kPiece = "position piece";
-    const int saved_object = naming_object_;
-    const std::string* saved_property = naming_property_;
-    naming_object_ = index;
-    naming_property_ = &kPiece;
+    const NamingScope naming(*this, index, &kPiece);
     const double u = DrawUniform(0, placement.cumulative_measure.back(), span, "position piece");
-    naming_object_ = saved_object;
-    naming_property_ = saved_property;
     while (i + 1 < placement.pieces.size() && u >= placement.cumulative_measure[i]) ++i;
   }
   return DrawPosition(placement.pieces[i], index, span);

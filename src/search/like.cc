@@ -18,13 +18,7 @@ namespace {
 
 constexpr double kLikeUniformShare = 0.05;
 
-uint64_t Fnv1a(uint64_t hash, std::string_view bytes) {
-  for (unsigned char c : bytes) {
-    hash ^= c;
-    hash *= 0x100000001B3ULL;
-  }
-  return hash;
-}
+constexpr uint64_t kProposalSalt = 0x5EA2C4E1B0F3A977ULL;
 
 // One line as an episode record (a JSON object with an "outcome" string), or a located error.
 nlohmann::json ParseRecord(const std::string& line, const std::string& where) {
@@ -66,15 +60,28 @@ std::optional<std::vector<double>> CheckCoordinates(const nlohmann::json& record
 
 }  // namespace
 
+uint64_t CalcFnv1a(std::string_view bytes, uint64_t hash) {
+  for (unsigned char c : bytes) {
+    hash ^= c;
+    hash *= 0x100000001B3ULL;
+  }
+  return hash;
+}
+
+geometry::Rng MakeProposalRng(uint64_t seed, uint64_t index, int64_t attempt) {
+  return geometry::Rng(
+      seed ^ kProposalSalt ^ (static_cast<uint64_t>(attempt) * 0x9E3779B97F4A7C15ULL), index);
+}
+
 std::string CalcSpecHash(const lang::CompiledProgram& program) {
-  uint64_t hash = 0xCBF29CE484222325ULL;
+  uint64_t hash = kFnv1aOffset;
   for (size_t f = 0; f < program.sources.file_count(); ++f) {
-    hash = Fnv1a(hash, program.sources.text(static_cast<lang::FileId>(f)));
-    hash = Fnv1a(hash, std::string_view("\0", 1));
+    hash = CalcFnv1a(program.sources.text(static_cast<lang::FileId>(f)), hash);
+    hash = CalcFnv1a(std::string_view("\0", 1), hash);
   }
   std::map<std::string, std::string> params(program.param_overrides.begin(),
                                             program.param_overrides.end());
-  for (const auto& [name, value] : params) hash = Fnv1a(hash, name + "=" + value + ";");
+  for (const auto& [name, value] : params) hash = CalcFnv1a(name + "=" + value + ";", hash);
   return fmt::format("{:016x}", hash);
 }
 
@@ -84,8 +91,7 @@ GaussianPoints::GaussianPoints(std::vector<double> mean, std::vector<double> std
 
 bool GaussianPoints::Point(uint64_t seed, uint64_t index, int64_t attempt, double* u) const {
   if (attempt >= kMaxProposalAttempts) return false;
-  geometry::Rng rng(seed ^ kProposalSalt ^ (static_cast<uint64_t>(attempt) * 0x9E3779B97F4A7C15ULL),
-                    index);
+  geometry::Rng rng = MakeProposalRng(seed, index, attempt);
   const int d = dimension();
   if (rng.Uniform01() < uniform_share_) {
     for (int j = 0; j < d; ++j) u[j] = rng.Uniform01();

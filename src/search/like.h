@@ -6,8 +6,10 @@
 
 #include <cstdint>
 #include <string>
+#include <string_view>
 #include <vector>
 
+#include "geometry/random.h"
 #include "lang/lang.h"
 #include "sampling/sampler.h"
 
@@ -17,8 +19,14 @@ namespace prs::search {
 /// file's text (in load order) and the -p overrides. Hex, 16 digits.
 std::string CalcSpecHash(const lang::CompiledProgram& program);
 
-/// Proposals draw from streams of their own, apart from every scene's stream (seed, index).
-inline constexpr uint64_t kProposalSalt = 0x5EA2C4E1B0F3A977ULL;
+/// FNV-1a (64 bits) of `bytes`, continuing from `hash`: the fingerprints of programs and the
+/// checksums of campaign shards.
+inline constexpr uint64_t kFnv1aOffset = 0xCBF29CE484222325ULL;
+uint64_t CalcFnv1a(std::string_view bytes, uint64_t hash = kFnv1aOffset);
+
+/// The stream proposal attempt `attempt` of scene `index` draws from: one of its own, apart
+/// from every scene's stream (seed, index).
+geometry::Rng MakeProposalRng(uint64_t seed, uint64_t index, int64_t attempt);
 /// Proposed points a scene may reject before its attempts read the stream alone (so a
 /// proposal stuck where every attempt is rejected still finishes its scenes, exactly).
 inline constexpr int64_t kMaxProposalAttempts = 100;

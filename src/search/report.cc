@@ -355,20 +355,29 @@ std::vector<FailureMode> FindFailureModes(const FeatureTable& table,
     }
     // The representative: nearest the members' mean in the path's features, each scaled by
     // its spread over the members.
+    std::vector<double> spread(step.features.size(), 0);  // per path feature, over the members
+    for (size_t i = 0; i < step.features.size(); ++i) {
+      const int f = step.features[i];
+      for (size_t m : mode.members) spread[i] += std::pow(table.rows[m][f] - mode.mean[f], 2);
+      spread[i] = std::sqrt(spread[i] / static_cast<double>(mode.members.size()));
+    }
     auto distance = [&](size_t r) {
       double d = 0;
-      for (int f : step.features) {
-        double spread = 0;
-        for (size_t m : mode.members) spread += std::pow(table.rows[m][f] - mode.mean[f], 2);
-        spread = std::sqrt(spread / static_cast<double>(mode.members.size()));
+      for (size_t i = 0; i < step.features.size(); ++i) {
+        const int f = step.features[i];
         const double v = table.rows[r][f];
-        if (!std::isnan(v) && spread > 0) d += std::pow((v - mode.mean[f]) / spread, 2);
+        if (!std::isnan(v) && spread[i] > 0) d += std::pow((v - mode.mean[f]) / spread[i], 2);
       }
       return d;
     };
     mode.representative = mode.members.front();
+    double nearest = distance(mode.representative);
     for (size_t r : mode.members) {
-      if (distance(r) < distance(mode.representative)) mode.representative = r;
+      const double d = distance(r);
+      if (d < nearest) {
+        nearest = d;
+        mode.representative = r;
+      }
     }
     modes.push_back(std::move(mode));
   }

@@ -51,8 +51,7 @@ class ProposalPoints : public sampling::AttemptPoints {
 
   bool Point(uint64_t seed, uint64_t index, int64_t attempt, double* u) const override {
     if (attempt >= kMaxProposalAttempts) return false;
-    geometry::Rng rng(
-        seed ^ kProposalSalt ^ (static_cast<uint64_t>(attempt) * 0x9E3779B97F4A7C15ULL), index);
+    geometry::Rng rng = MakeProposalRng(seed, index, attempt);
     switch (mode_) {
       case Mode::kSobol:
         if (attempt == 0) {

@@ -17,15 +17,9 @@ namespace prs::campaign {
 namespace {
 
 namespace fs = std::filesystem;
-using sampling::testing_checks::RepoPath;
 
 std::unique_ptr<lang::CompiledProgram> CompileTableCube() {
-  lang::DiagnosticEngine diagnostics;
-  lang::CompileOptions options;
-  options.search_path = {RepoPath("examples")};
-  auto program = lang::CompileFile(RepoPath("examples/table_cube.prs"), options, diagnostics);
-  EXPECT_FALSE(diagnostics.has_errors());
-  return program;
+  return sampling::testing_checks::CompileExample("table_cube.prs");
 }
 
 class CampaignTest : public testing::Test {

@@ -1,21 +1,16 @@
-// End-to-end tests of `prs search`, `--design` and `prs check --coordinates`: records with
-// coordinates, scores and generations, the same for any thread count; designs change scenes
-// but keep them valid and reproducible; and bad requests exit 2 with a message to act on.
+// End-to-end tests of `prs search`, `--design`, `--near`, `prs report` and `prs check
+// --coordinates`: records with coordinates, scores and generations, the same for any thread
+// count; designs change scenes but keep them valid and reproducible; reports name the cause;
+// and bad requests exit with a message to act on.
 #include <nlohmann/json.hpp>
 
+#include "cli/test/json_lines.h"
 #include "cli/test/prs_test_fixture.h"
 
 namespace prs::cli {
 namespace {
 
 using nlohmann::json;
-
-std::vector<json> ReadJsonLines(const fs::path& path) {
-  std::vector<json> lines;
-  std::stringstream text(ReadText(path));
-  for (std::string line; std::getline(text, line);) lines.push_back(json::parse(line));
-  return lines;
-}
 
 TEST_F(PrsTest, SearchWritesRecordsTheSameForAnyThreadCount) {
   const std::string one = (dir_ / "one.jsonl").string(), two = (dir_ / "two.jsonl").string();
@@ -27,7 +22,7 @@ TEST_F(PrsTest, SearchWritesRecordsTheSameForAnyThreadCount) {
     EXPECT_NE(r.out.find("generation"), std::string::npos) << r.out;
     EXPECT_NE(r.err.find("ce found"), std::string::npos) << r.err;
   }
-  std::vector<json> a = ReadJsonLines(one), b = ReadJsonLines(two);
+  std::vector<json> a = ReadRecords(one), b = ReadRecords(two);
   ASSERT_EQ(a.size(), 200u);
   for (std::vector<json>* records : {&a, &b}) {
     for (json& record : *records) record.erase("wall_s");
@@ -65,7 +60,7 @@ TEST_F(PrsTest, SearchRefusesBadRequests) {
   r = Run({"search", Example("table_cube.prs"), "--exec",
            "echo '{\"outcome\": \"success\", \"score\": NaN}'", "--budget", "3", "-o", out});
   ASSERT_EQ(r.exit_code, 0) << r.err;
-  for (const json& record : ReadJsonLines(out)) {
+  for (const json& record : ReadRecords(out)) {
     EXPECT_EQ(record["outcome"], "bad-answer");
     EXPECT_NE(record["detail"].get<std::string>().find("finite number"), std::string::npos);
   }
@@ -89,13 +84,13 @@ TEST_F(PrsTest, DesignsGiveOtherValidScenesReproducibly) {
   const Result t = Run({"test", Example("table_cube.prs"), "--controller", "planted-1-percent",
                         "-n", "20", "--design", "halton", "-o", (dir_ / "t.jsonl").string()});
   ASSERT_EQ(t.exit_code, 0) << t.err;
-  const std::vector<json> records = ReadJsonLines(dir_ / "t.jsonl");
+  const std::vector<json> records = ReadRecords(dir_ / "t.jsonl");
   EXPECT_EQ(records[0]["coordinates"].size(), 11u);
   // A failure's regenerate command rewrites the scene the design gave it.
   const Result s = Run({"search", Example("table_cube.prs"), "--controller", "planted-1-percent",
                         "--budget", "300", "-s", "1", "-o", (dir_ / "s.jsonl").string()});
   ASSERT_EQ(s.exit_code, 0) << s.err;
-  for (const json& record : ReadJsonLines(dir_ / "s.jsonl")) {
+  for (const json& record : ReadRecords(dir_ / "s.jsonl")) {
     EXPECT_FALSE(record.contains("regenerate")) << "a searched scene is not (seed, index)'s";
   }
   const Result many =
@@ -103,7 +98,7 @@ TEST_F(PrsTest, DesignsGiveOtherValidScenesReproducibly) {
            "-s", "2", "--design", "sobol", "-o", (dir_ / "m.jsonl").string()});
   ASSERT_EQ(many.exit_code, 0) << many.err;
   int checked = 0;
-  for (const json& record : ReadJsonLines(dir_ / "m.jsonl")) {
+  for (const json& record : ReadRecords(dir_ / "m.jsonl")) {
     if (!record.contains("regenerate")) continue;
     const std::string command = record["regenerate"];
     EXPECT_NE(command.find("--design sobol"), std::string::npos) << command;
@@ -137,7 +132,7 @@ TEST_F(PrsTest, NearDrawsSmallChangesOfOneEpisode) {
   Result r = Run({"search", Example("table_cube.prs"), "--controller", "planted-1-percent",
                   "--budget", "100", "-s", "2", "-o", results});
   ASSERT_EQ(r.exit_code, 0) << r.err;
-  const json episode = ReadJsonLines(results)[41];
+  const json episode = ReadRecords(results)[41];
   const double x = episode["features"]["Cube#5.x"], y = episode["features"]["Cube#5.y"];
   r = Run({"sample", Example("table_cube.prs"), "--near", results + ":42", "--scale", "0.01", "-n",
            "20", "-s", "5"});
@@ -190,84 +185,6 @@ TEST_F(PrsTest, ReportNamesWhereTheControllerFails) {
   EXPECT_NE(r.err.find("bad.jsonl:2: not an episode record"), std::string::npos) << r.err;
   r = Run({"report", (dir_ / "missing.jsonl").string()});
   EXPECT_EQ(r.exit_code, 1);
-}
-
-TEST_F(PrsTest, CampaignShardsMergeIntoOneMachinesRun) {
-  const std::string dir = (dir_ / "campaign").string();
-  Result r = Run({"campaign", "init", dir, Example("table_cube.prs"), "--controller", "demo-reach",
-                  "-n", "40", "--shard-size", "7", "-s", "3"});
-  ASSERT_EQ(r.exit_code, 0) << r.err;
-  for (const char* k : {"5", "2", "0", "1", "4", "3"}) {
-    r = Run({"campaign", "run-shard", dir, k, "--threads", "1"});
-    ASSERT_EQ(r.exit_code, 0) << r.err;
-  }
-  r = Run({"campaign", "status", dir});
-  EXPECT_NE(r.out.find("6 of 6 done"), std::string::npos) << r.out;
-  const std::string merged = (dir_ / "merged.jsonl").string(),
-                    single = (dir_ / "single.jsonl").string();
-  r = Run({"campaign", "merge", dir, "-o", merged});
-  ASSERT_EQ(r.exit_code, 0) << r.err;
-  r = Run({"test", Example("table_cube.prs"), "--controller", "demo-reach", "-n", "40", "-s", "3",
-           "-o", single});
-  ASSERT_EQ(r.exit_code, 0) << r.err;
-  std::vector<json> a = ReadJsonLines(merged), b = ReadJsonLines(single);
-  for (std::vector<json>* records : {&a, &b}) {
-    for (json& record : *records) record.erase("wall_s");
-  }
-  EXPECT_EQ(a, b);
-  // A shard out of range, a truncated shard, and merge refusing an incomplete campaign.
-  r = Run({"campaign", "run-shard", dir, "6"});
-  EXPECT_EQ(r.exit_code, 2);
-  EXPECT_NE(r.err.find("there is no shard 6"), std::string::npos) << r.err;
-  fs::resize_file(dir + "/shards/shard-00002.jsonl", 5);
-  r = Run({"campaign", "status", dir});
-  EXPECT_NE(r.out.find("shard 2: bad"), std::string::npos) << r.out;
-  r = Run({"campaign", "merge", dir, "-o", merged});
-  EXPECT_EQ(r.exit_code, 2);
-  EXPECT_NE(r.err.find("shards not done: 2"), std::string::npos) << r.err;
-  r = Run({"campaign", "status", (dir_ / "nothing").string()});
-  EXPECT_EQ(r.exit_code, 2);
-  EXPECT_NE(r.err.find("prs campaign init"), std::string::npos) << r.err;
-}
-
-TEST_F(PrsTest, CampaignSlurmScriptRunsTheUnfinishedShards) {
-  const std::string dir = (dir_ / "campaign").string();
-  Result r = Run({"campaign", "init", dir, Example("table_cube.prs"), "-n", "30", "--shard-size",
-                  "5", "-s", "2"});
-  ASSERT_EQ(r.exit_code, 0) << r.err;
-  r = Run({"campaign", "run-shard", dir, "1", "--threads", "1"});
-  ASSERT_EQ(r.exit_code, 0) << r.err;
-  r = Run({"campaign", "slurm", dir, "--print", "--max-running", "2", "--partition", "debug",
-           "--cpus-per-task", "1"});
-  ASSERT_EQ(r.exit_code, 0) << r.err;
-  EXPECT_NE(r.out.find("#SBATCH --array=0,2-5%2\n"), std::string::npos) << r.out;
-  EXPECT_NE(r.out.find("#SBATCH --partition=debug\n"), std::string::npos) << r.out;
-  EXPECT_NE(r.out.find("/logs/shard-%a.out"), std::string::npos) << r.out;
-  const std::string script = dir + "/slurm/submit-0.sh";
-  ASSERT_TRUE(fs::exists(script));
-  // What Slurm does with the script: run it once per array index, with the index set.
-  for (const char* task : {"0", "2", "3", "4", "5"}) {
-    const std::string command =
-        std::string("SLURM_ARRAY_TASK_ID=") + task + " bash " + Quote(script) + " >/dev/null 2>&1";
-    ASSERT_EQ(std::system(command.c_str()), 0) << task;
-  }
-  r = Run({"campaign", "status", dir});
-  EXPECT_NE(r.out.find("6 of 6 done"), std::string::npos) << r.out;
-  r = Run({"campaign", "slurm", dir, "--print"});
-  EXPECT_EQ(r.exit_code, 0);
-  EXPECT_NE(r.err.find("nothing to submit"), std::string::npos) << r.err;
-  const std::string merged = (dir_ / "merged.jsonl").string();
-  r = Run({"campaign", "merge", dir, "-o", merged});
-  ASSERT_EQ(r.exit_code, 0) << r.err;
-  const Result single = Run({"sample", Example("table_cube.prs"), "-n", "30", "-s", "2"});
-  EXPECT_EQ(ReadText(merged), single.out);
-  // Without Slurm installed, submitting says so and where the script is.
-  if (std::system("command -v sbatch >/dev/null 2>&1") != 0) {
-    fs::remove(dir + "/shards/shard-00000.jsonl.done.json");
-    r = Run({"campaign", "slurm", dir});
-    EXPECT_EQ(r.exit_code, 1);
-    EXPECT_NE(r.err.find("sbatch is not installed"), std::string::npos) << r.err;
-  }
 }
 
 }  // namespace

@@ -4,6 +4,7 @@
 // and bad flags (exit 2) or scenarios (exit 1, 3).
 #include <nlohmann/json.hpp>
 
+#include "cli/test/json_lines.h"
 #include "cli/test/prs_test_fixture.h"
 #include "harness/test/process_checks.h"
 
@@ -11,16 +12,6 @@ namespace prs::cli {
 namespace {
 
 using nlohmann::json;
-
-std::vector<json> ReadRecords(const fs::path& path) {
-  std::vector<json> records;
-  std::stringstream lines(ReadText(path));
-  for (std::string line; std::getline(lines, line);) {
-    records.push_back(json::parse(line, nullptr, /*allow_exceptions=*/false));
-    EXPECT_TRUE(records.back().is_object()) << "not a JSON record: " << line;
-  }
-  return records;
-}
 
 // The records without their wall-clock times, which are the only part allowed to differ.
 std::vector<json> WithoutTimes(std::vector<json> records) {

@@ -40,6 +40,16 @@ inline std::unique_ptr<lang::CompiledProgram> CompileOrDie(const std::string& te
   return program;
 }
 
+// examples/NAME compiled as `prs` would, with examples/ on the search path.
+inline std::unique_ptr<lang::CompiledProgram> CompileExample(const std::string& name) {
+  lang::DiagnosticEngine diagnostics;
+  lang::CompileOptions options;
+  options.search_path = {RepoPath("examples")};
+  auto program = lang::CompileFile(RepoPath("examples/" + name), options, diagnostics);
+  EXPECT_FALSE(diagnostics.has_errors()) << name;
+  return program;
+}
+
 inline const SceneObject& Find(const Scene& scene, const std::string& name) {
   for (const SceneObject& o : scene.objects) {
     if (o.name && *o.name == name) return o;

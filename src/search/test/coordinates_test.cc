@@ -14,17 +14,8 @@
 namespace prs::search {
 namespace {
 
+using sampling::testing_checks::CompileExample;
 using sampling::testing_checks::CompileOrDie;
-using sampling::testing_checks::RepoPath;
-
-std::unique_ptr<lang::CompiledProgram> CompileExample(const std::string& name) {
-  lang::DiagnosticEngine diagnostics;
-  lang::CompileOptions options;
-  options.search_path = {RepoPath("examples")};
-  auto program = lang::CompileFile(RepoPath("examples/" + name), options, diagnostics);
-  EXPECT_FALSE(diagnostics.has_errors());
-  return program;
-}
 
 // I.i.d. uniform points from a stream of their own (the baseline a search's "random" uses).
 class IidPoints : public sampling::AttemptPoints {

@@ -14,7 +14,6 @@
 namespace prs::search {
 namespace {
 
-using sampling::testing_checks::RepoPath;
 
 TEST(DesignTest, PointsAreInTheCubeReproducibleAndSeeded) {
   for (DesignKind kind : {DesignKind::kSobol, DesignKind::kHalton, DesignKind::kLattice}) {
@@ -84,11 +83,7 @@ class IidPoints : public sampling::AttemptPoints {
 };
 
 TEST(DesignTest, DesignsCoverTheCubePositionBetterThanIid) {
-  lang::DiagnosticEngine diagnostics;
-  lang::CompileOptions compile;
-  compile.search_path = {RepoPath("examples")};
-  const auto program = lang::CompileFile(RepoPath("examples/table_cube.prs"), compile, diagnostics);
-  ASSERT_FALSE(diagnostics.has_errors());
+  const auto program = sampling::testing_checks::CompileExample("table_cube.prs");
   const int d = static_cast<int>(sampling::DescribeCoordinates(*program).size());
   ASSERT_EQ(d, 11);
   constexpr int kScenes = 256, kSeeds = 10;
@@ -118,10 +113,7 @@ TEST(DesignTest, DesignsCoverTheCubePositionBetterThanIid) {
 }
 
 TEST(DesignTest, ScenesAtADesignAreTheSameForAnyThreadCount) {
-  lang::DiagnosticEngine diagnostics;
-  lang::CompileOptions compile;
-  compile.search_path = {RepoPath("examples")};
-  const auto program = lang::CompileFile(RepoPath("examples/table_cube.prs"), compile, diagnostics);
+  const auto program = sampling::testing_checks::CompileExample("table_cube.prs");
   const int d = static_cast<int>(sampling::DescribeCoordinates(*program).size());
   std::vector<int> all(d);
   for (int j = 0; j < d; ++j) all[j] = j;

@@ -14,16 +14,9 @@ namespace prs::search {
 namespace {
 
 using sampling::testing_checks::CompileOrDie;
-using sampling::testing_checks::RepoPath;
 
-std::unique_ptr<lang::CompiledProgram> CompileTableCube(const std::string& param = "") {
-  lang::DiagnosticEngine diagnostics;
-  lang::CompileOptions options;
-  options.search_path = {RepoPath("examples")};
-  if (!param.empty()) options.param_overrides = {{param, "1"}};
-  auto program = lang::CompileFile(RepoPath("examples/table_cube.prs"), options, diagnostics);
-  EXPECT_FALSE(diagnostics.has_errors());
-  return program;
+std::unique_ptr<lang::CompiledProgram> CompileTableCube() {
+  return sampling::testing_checks::CompileExample("table_cube.prs");
 }
 
 std::vector<std::string> SearchRecords(const lang::CompiledProgram& program) {

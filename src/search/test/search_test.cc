@@ -13,15 +13,9 @@ namespace prs::search {
 namespace {
 
 using sampling::testing_checks::CompileOrDie;
-using sampling::testing_checks::RepoPath;
 
 std::unique_ptr<lang::CompiledProgram> CompileTableCube() {
-  lang::DiagnosticEngine diagnostics;
-  lang::CompileOptions options;
-  options.search_path = {RepoPath("examples")};
-  auto program = lang::CompileFile(RepoPath("examples/table_cube.prs"), options, diagnostics);
-  EXPECT_FALSE(diagnostics.has_errors());
-  return program;
+  return sampling::testing_checks::CompileExample("table_cube.prs");
 }
 
 // Runs the planted controller and checks each scene against table_cube.prs's relations on
