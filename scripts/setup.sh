@@ -36,6 +36,8 @@ packages=(
   python3-pip python3-setuptools python3-wheel  # pip install --no-build-isolation . (offline)
   python3-pytest python3-matplotlib  # Python tests and the plotting example
   python3-sklearn        # probrobscene.search(strategy="bo"): Gaussian processes
+  python3-distributed    # probrobscene.campaign.run on a Dask cluster, tested on a LocalCluster
+  munge slurmctld slurmd slurm-client  # a real single-node Slurm for tests/slurm/campaign_test.sh
   liburdfdom-dev libsdformat-dev  # prs export tests: URDF and SDF read by their own parsers
   python3                # prs test's example controller (examples/controllers/reach_check.py) in the tests
 )

@@ -1,15 +1,18 @@
 #!/usr/bin/env bash
 # Sets up, builds and runs every test: the Release build (C++ tests, the simulated case study,
-# the headless-Chromium viewer test), the Python package (scripts/test_python.sh), the same C++
-# tests under AddressSanitizer + UndefinedBehaviorSanitizer, then libFuzzer: the language stage
-# for 20 s of ordinary inputs and 10 s of inputs up to 1 MiB (long chains), and the readers of
-# scenes files and controller answers for 10 s (scripts/fuzz.sh).
+# the headless-Chromium viewer test), a campaign on a real single-node Slurm started for the test
+# (tests/slurm/campaign_test.sh), the Python package with a Dask LocalCluster
+# (scripts/test_python.sh), the same C++ tests under AddressSanitizer +
+# UndefinedBehaviorSanitizer, then libFuzzer: the language stage for 20 s of ordinary inputs and
+# 10 s of inputs up to 1 MiB (long chains), and the readers of scenes files and controller
+# answers for 10 s (scripts/fuzz.sh).
 # Exits non-zero if anything fails.
 set -euo pipefail
 cd "$(dirname "$0")/.."
 scripts/setup.sh
 scripts/build.sh release
 ctest --test-dir build --output-on-failure -j2
+tests/slurm/campaign_test.sh build/src/cli/prs
 scripts/test_python.sh
 scripts/build.sh asan
 ASAN_OPTIONS=detect_leaks=1 UBSAN_OPTIONS=print_stacktrace=1 \

@@ -13,6 +13,7 @@
 #include <nlohmann/json.hpp>
 #include <sstream>
 
+#include "campaign/files.h"
 #include "output/line_writer.h"
 #include "output/scene_json.h"
 #include "sampling/batch.h"
@@ -21,21 +22,6 @@
 namespace prs::campaign {
 namespace fs = std::filesystem;
 namespace {
-
-std::string ReadWhole(const std::string& path, bool* ok) {
-  std::ifstream in(path, std::ios::binary);
-  *ok = static_cast<bool>(in);
-  std::stringstream text;
-  text << in.rdbuf();
-  return text.str();
-}
-
-// Writes `text` to `path` atomically: PATH.partial, fsync, rename.
-void WriteAtomically(const std::string& path, const std::string& text) {
-  output::LineWriter writer(path);
-  if (!text.empty()) writer.AddLine(std::string_view(text).substr(0, text.size() - 1));
-  writer.Commit();
-}
 
 nlohmann::json ToJson(const CampaignSpec& s) {
   nlohmann::json params = nlohmann::json::array();
@@ -63,6 +49,20 @@ std::string SidecarPath(const std::string& dir, uint64_t k) {
 }
 
 }  // namespace
+
+std::string ReadFileText(const std::string& path, bool* ok) {
+  std::ifstream in(path, std::ios::binary);
+  *ok = static_cast<bool>(in);
+  std::stringstream text;
+  text << in.rdbuf();
+  return text.str();
+}
+
+void WriteFileAtomically(const std::string& path, const std::string& text) {
+  output::LineWriter writer(path);
+  if (!text.empty()) writer.AddLine(std::string_view(text).substr(0, text.size() - 1));
+  writer.Commit();
+}
 
 uint64_t CampaignSpec::size(uint64_t k) const {
   return k + 1 < shards() ? shard_size : count - first(k);
@@ -93,7 +93,7 @@ CampaignSpec InitCampaign(const std::string& dir, const lang::CompiledProgram& p
       throw CampaignError("two files of the scenario are both called " + name + " (" + it->second +
                           " and " + path + "); rename one so the campaign can hold both");
     }
-    WriteAtomically(fmt::format("{}/spec/{}", dir, name),
+    WriteFileAtomically(fmt::format("{}/spec/{}", dir, name),
                     std::string(program.sources.text(static_cast<lang::FileId>(f))));
     if (f == 0) spec.main_file = "spec/" + name;
   }
@@ -102,14 +102,14 @@ CampaignSpec InitCampaign(const std::string& dir, const lang::CompiledProgram& p
       "{:016x}",
       search::CalcFnv1a(spec.spec_hash + std::to_string(::getpid()) +
             std::to_string(std::chrono::system_clock::now().time_since_epoch().count())));
-  WriteAtomically(dir + "/campaign.json", ToJson(spec).dump(2) + "\n");
+  WriteFileAtomically(dir + "/campaign.json", ToJson(spec).dump(2) + "\n");
   return spec;
 }
 
 CampaignSpec ReadCampaign(const std::string& dir) {
   const std::string path = dir + "/campaign.json";
   bool ok = false;
-  const std::string text = ReadWhole(path, &ok);
+  const std::string text = ReadFileText(path, &ok);
   if (!ok) {
     throw CampaignError("cannot read " + path + ": is " + dir +
                         " a campaign directory (made by prs campaign init)?");
@@ -176,8 +176,8 @@ ShardStatus CheckShard(const std::string& dir, const CampaignSpec& spec, uint64_
     return {ShardStatus::State::kMissing, ""};
   }
   bool ok = false;
-  const auto meta = nlohmann::json::parse(ReadWhole(SidecarPath(dir, k), &ok), nullptr, false);
-  const std::string content = ReadWhole(path, &ok);
+  const auto meta = nlohmann::json::parse(ReadFileText(SidecarPath(dir, k), &ok), nullptr, false);
+  const std::string content = ReadFileText(path, &ok);
   if (!meta.is_object()) return {ShardStatus::State::kBad, "its .done.json is not JSON"};
   if (meta.value("campaign", "") != spec.id) {
     return {ShardStatus::State::kBad, "it was written by another campaign"};
@@ -201,7 +201,7 @@ void WriteShard(const std::string& dir, const CampaignSpec& spec, uint64_t k,
   fs::remove(SidecarPath(dir, k), error);  // an old sidecar never vouches for new data
   std::string content;
   for (const std::string& line : lines) content += line + "\n";
-  WriteAtomically(ShardPath(dir, k), content);
+  WriteFileAtomically(ShardPath(dir, k), content);
   const nlohmann::json meta = {{"campaign", spec.id},
                                {"shard", k},
                                {"spec", spec.spec_hash},
@@ -209,7 +209,7 @@ void WriteShard(const std::string& dir, const CampaignSpec& spec, uint64_t k,
                                {"lines", lines.size()},
                                {"bytes", content.size()},
                                {"checksum", fmt::format("{:016x}", search::CalcFnv1a(content))}};
-  WriteAtomically(SidecarPath(dir, k), meta.dump() + "\n");
+  WriteFileAtomically(SidecarPath(dir, k), meta.dump() + "\n");
 }
 
 void RunShard(const std::string& dir, const CampaignSpec& spec,
@@ -264,7 +264,7 @@ std::vector<std::string> MergeShards(const std::string& dir, const CampaignSpec&
       continue;
     }
     bool ok = false;
-    std::stringstream content(ReadWhole(ShardPath(dir, k), &ok));
+    std::stringstream content(ReadFileText(ShardPath(dir, k), &ok));
     for (std::string line; std::getline(content, line);) lines.push_back(line);
   }
   if (!not_done.empty() && !partial) {
@@ -280,45 +280,6 @@ std::vector<uint64_t> FindUnfinishedShards(const std::string& dir, const Campaig
     if (CheckShard(dir, spec, k).state != ShardStatus::State::kDone) shards.push_back(k);
   }
   return shards;
-}
-
-std::string FormatSlurmScript(const std::string& dir, const CampaignSpec& spec,
-                              const std::vector<uint64_t>& shards, const SlurmOptions& options) {
-  // The array's indices: runs of consecutive shards as ranges ("0-7,9,12-15").
-  std::string array;
-  for (size_t i = 0; i < shards.size();) {
-    size_t j = i;
-    while (j + 1 < shards.size() && shards[j + 1] == shards[j] + 1) ++j;
-    array += fmt::format(
-        "{}{}", array.empty() ? "" : ",",
-        i == j ? fmt::format("{}", shards[i]) : fmt::format("{}-{}", shards[i], shards[j]));
-    i = j + 1;
-  }
-  if (options.max_running > 0) array += fmt::format("%{}", options.max_running);
-  auto quote = [](const std::string& word) {
-    std::string quoted = "'";
-    for (char c : word) quoted += c == '\'' ? std::string("'\\''") : std::string(1, c);
-    return quoted + "'";
-  };
-  std::string script = fmt::format(
-      "#!/bin/bash\n"
-      "# prs campaign {} ({}): {} of {} shard(s), written by prs campaign slurm.\n"
-      "#SBATCH --job-name=prs-{}\n"
-      "#SBATCH --array={}\n"
-      "#SBATCH --output={}/logs/shard-%a.out\n"
-      "#SBATCH --error={}/logs/shard-%a.err\n"
-      "#SBATCH --cpus-per-task={}\n",
-      spec.id, spec.kind, shards.size(), spec.shards(), spec.id.substr(0, 8), array, dir, dir,
-      options.cpus_per_task);
-  if (!options.partition.empty()) script += "#SBATCH --partition=" + options.partition + "\n";
-  if (!options.time.empty()) script += "#SBATCH --time=" + options.time + "\n";
-  if (!options.mem.empty()) script += "#SBATCH --mem=" + options.mem + "\n";
-  script += fmt::format(
-      "set -eu\n"
-      "exec {} campaign run-shard {} \"$SLURM_ARRAY_TASK_ID\" --threads "
-      "\"${{SLURM_CPUS_PER_TASK:-{}}}\"\n",
-      quote(options.prs), quote(dir), options.cpus_per_task);
-  return script;
 }
 
 }  // namespace prs::campaign

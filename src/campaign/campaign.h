@@ -91,22 +91,6 @@ void RunShard(const std::string& dir, const CampaignSpec& spec,
 std::vector<std::string> MergeShards(const std::string& dir, const CampaignSpec& spec, bool partial,
                                      std::vector<uint64_t>* skipped);
 
-/// What `prs campaign slurm` puts in the job script (docs/cluster.md).
-struct SlurmOptions {
-  std::string partition;  // --partition, when set
-  std::string time;       // --time (e.g. "01:00:00"), when set
-  std::string mem;        // --mem (e.g. "4G"), when set
-  int cpus_per_task = 1;  // --cpus-per-task; run-shard uses as many threads
-  int max_running = 0;    // the array's % throttle, when > 0
-  std::string prs;        // the prs program to run (an absolute path)
-};
-
-/// The sbatch script of a job array with one task per shard in `shards` (the array's indices
-/// are the shard numbers), logs in DIR/logs/shard-K.out and .err, each task running
-/// `prs campaign run-shard DIR $SLURM_ARRAY_TASK_ID`. `dir` should be absolute.
-std::string FormatSlurmScript(const std::string& dir, const CampaignSpec& spec,
-                              const std::vector<uint64_t>& shards, const SlurmOptions& options);
-
 /// The shards that are not done (missing, running or stopped, bad), in order.
 std::vector<uint64_t> FindUnfinishedShards(const std::string& dir, const CampaignSpec& spec);
 

@@ -1,6 +1,7 @@
-// `prs campaign init|run-shard|status|merge` (docs/cluster.md): a test or sample run cut into
-// shards that any machine runs alone from a self-describing directory, and merged back into
-// exactly what one machine's `prs test` / `prs sample` writes.
+// `prs campaign init|run-shard|status|merge|slurm|resume` (docs/cluster.md): a test or sample
+// run cut into shards that any machine runs alone from a self-describing directory, submitted to
+// Slurm as job arrays, and merged back into exactly what one machine's `prs test` / `prs sample`
+// writes.
 #include <fmt/format.h>
 
 #include <cstdlib>
@@ -8,8 +9,10 @@
 #include <iostream>
 #include <memory>
 #include <nlohmann/json.hpp>
+#include <set>
 
 #include "campaign/campaign.h"
+#include "campaign/slurm.h"
 #include "cli/commands.h"
 #include "cli/common.h"
 #include "cli/controller_options.h"
@@ -35,7 +38,7 @@ struct CampaignArgs {
   bool partial = false;
   // slurm
   campaign::SlurmOptions slurm;
-  std::string extra;  // more sbatch arguments
+  std::set<std::string> given;  // the slurm/resume flags given on the command line
   bool print_only = false;
 };
 
@@ -119,25 +122,36 @@ int WithCampaign(const std::string& dir, Body body) {
   }
 }
 
+// Prints the shards that need a look (running, failed, bad, missing with a reason: at most 20 of
+// each kind) and one line of counts.
 int RunStatus(const CampaignArgs& args) {
   return WithCampaign(args.dir, [&](const campaign::CampaignSpec& spec) {
-    int64_t done = 0, missing = 0, running = 0, bad = 0;
-    for (uint64_t k = 0; k < spec.shards(); ++k) {
-      const campaign::ShardStatus s = campaign::CheckShard(args.dir, spec, k);
-      using State = campaign::ShardStatus::State;
-      if (s.state == State::kDone) ++done;
-      if (s.state == State::kMissing) ++missing;
-      if (s.state == State::kRunning) {
-        ++running;
-        std::cout << fmt::format("shard {}: running or stopped ({} exists)\n", k, s.why);
-      }
-      if (s.state == State::kBad) {
-        ++bad;
-        std::cout << fmt::format("shard {}: bad: {}; run it again\n", k, s.why);
+    const campaign::SlurmQueue queue = campaign::QuerySlurmQueue(args.dir, spec);
+    const std::vector<campaign::ShardState> states =
+        campaign::DescribeShards(args.dir, spec, queue);
+    using Kind = campaign::ShardState::Kind;
+    constexpr const char* kNames[] = {"done", "queued", "running", "failed", "missing", "bad"};
+    int64_t counts[6] = {};
+    for (uint64_t k = 0; k < states.size(); ++k) {
+      const int kind = static_cast<int>(states[k].kind);
+      if (++counts[kind] <= 20 && states[k].kind != Kind::kDone &&
+          states[k].kind != Kind::kQueued && !states[k].why.empty()) {
+        std::cout << fmt::format("shard {}: {}: {}\n", k, kNames[kind], states[k].why);
       }
     }
-    std::cout << fmt::format("{}: {} of {} done, {} missing, {} running or stopped, {} bad\n",
-                             args.dir, done, spec.shards(), missing, running, bad);
+    for (int kind = 2; kind < 6; ++kind) {
+      if (counts[kind] > 20)
+        std::cout << fmt::format("... and {} more {}\n", counts[kind] - 20, kNames[kind]);
+    }
+    std::cout << fmt::format(
+        "{}: {} of {} done, {} queued, {} running, {} failed, {} missing, {} bad\n", args.dir,
+        counts[0], spec.shards(), counts[1], counts[2], counts[3], counts[4], counts[5]);
+    if (!queue.available) PrintNote("the Slurm queue was not asked: " + queue.why_not);
+    const size_t to_submit = campaign::FindShardsToResubmit(states).size();
+    if (to_submit > 0 && counts[0] + counts[1] + counts[2] < static_cast<int64_t>(spec.shards())) {
+      PrintNote(fmt::format("prs campaign resume {} submits the {} again (or run-shard them)",
+                            args.dir, FormatCount(static_cast<int64_t>(to_submit), "shard")));
+    }
     return kExitSuccess;
   });
 }
@@ -168,53 +182,67 @@ int RunMerge(const CampaignArgs& args) {
   });
 }
 
-// Writes DIR/slurm/submit-N.sh for the unfinished shards and submits it with sbatch (unless
-// --print): the first submission and every resume are the same command.
-int RunSlurm(CampaignArgs args) {
+// Writes DIR/slurm/submit-N.sh for the shards that are neither done nor in the Slurm queue and
+// submits it with sbatch (unless --print), recording the job in DIR/slurm/submit-N.json. The
+// first submission and every resume are the same command; `resume` takes the options of the
+// last recorded submission, each overridden by the flag when given.
+int RunSlurm(CampaignArgs args, bool resume) {
   namespace fs = std::filesystem;
   return WithCampaign(args.dir, [&](const campaign::CampaignSpec& spec) {
     const std::string dir = fs::absolute(args.dir).lexically_normal().string();
-    const std::vector<uint64_t> shards = campaign::FindUnfinishedShards(dir, spec);
+    const std::vector<campaign::SlurmSubmission> earlier = campaign::ReadSubmissions(dir);
+    if (resume) {
+      if (earlier.empty()) {
+        PrintError("no Slurm submission of " + args.dir +
+                   " is recorded: submit it first with prs campaign slurm " + args.dir);
+        return kExitUsage;
+      }
+      const campaign::SlurmOptions& last = earlier.back().options;
+      const auto keep = [&](const char* flag, auto& value, const auto& saved) {
+        if (args.given.count(flag) == 0) value = saved;
+      };
+      keep("--partition", args.slurm.partition, last.partition);
+      keep("--time", args.slurm.time, last.time);
+      keep("--mem", args.slurm.mem, last.mem);
+      keep("--cpus-per-task", args.slurm.cpus_per_task, last.cpus_per_task);
+      keep("--max-running", args.slurm.max_running, last.max_running);
+      keep("--extra", args.slurm.extra, last.extra);
+    }
+    const campaign::SlurmQueue queue = campaign::QuerySlurmQueue(dir, spec);
+    if (!queue.available && !earlier.empty()) {
+      PrintNote("warning: the Slurm queue was not asked (" + queue.why_not +
+                "): shards still queued or running are submitted again");
+    }
+    const std::vector<uint64_t> shards =
+        campaign::FindShardsToResubmit(campaign::DescribeShards(dir, spec, queue));
     if (shards.empty()) {
-      PrintNote("every shard is done; nothing to submit (prs campaign merge " + args.dir + ")");
+      PrintNote("no shard to submit: each is done, queued or running (prs campaign status " +
+                args.dir + ")");
       return kExitSuccess;
     }
     std::error_code error;
     args.slurm.prs = fs::read_symlink("/proc/self/exe", error).string();
     if (error) args.slurm.prs = "prs";
-    fs::create_directories(dir + "/logs", error);
-    fs::create_directories(dir + "/slurm", error);
-    int n = 0;
-    while (fs::exists(fmt::format("{}/slurm/submit-{}.sh", dir, n))) ++n;
-    const std::string script = fmt::format("{}/slurm/submit-{}.sh", dir, n);
+    const int number = campaign::FindNextSubmissionNumber(dir);
     const std::string text = campaign::FormatSlurmScript(dir, spec, shards, args.slurm);
-    output::LineWriter writer(script);
-    writer.AddLine(std::string_view(text).substr(0, text.size() - 1));
-    writer.Commit();
+    const std::string script = campaign::WriteSlurmScript(dir, number, text);
+    const std::string tasks = FormatCount(static_cast<int64_t>(shards.size()), "array task");
     if (args.print_only) {
       std::cout << text << std::flush;
-      PrintNote(fmt::format("{} for {} written to {} (not submitted: --print)",
-                            FormatCount(static_cast<int64_t>(shards.size()), "array task"),
-                            FormatCount(static_cast<int64_t>(shards.size()), "shard"), script));
+      PrintNote(fmt::format("{} written to {} (not submitted: --print)", tasks, script));
       return kExitSuccess;
     }
-    if (std::system("command -v sbatch >/dev/null 2>&1") != 0) {
-      PrintError(
-          "sbatch is not installed here: run prs campaign slurm on a machine of the "
-          "cluster (Debian: the slurm-client package), or submit " +
-          script + " yourself");
-      return kExitScenarioError;
+    try {
+      const std::string job_id = campaign::SubmitToSlurm(script, args.slurm.extra);
+      campaign::WriteSubmission(dir, {number, job_id, shards, args.slurm});
+      std::cout << job_id << "\n" << std::flush;
+      PrintNote(fmt::format("submitted Slurm job {} ({}); follow it with prs campaign status {}",
+                            job_id, tasks, args.dir));
+      return kExitSuccess;
+    } catch (const campaign::CampaignError& error) {
+      PrintError(error.what());
+      return kExitScenarioError;  // sbatch missing or refusing is not a usage error
     }
-    const std::string command =
-        "sbatch --parsable " + args.extra + " " + harness::QuoteForShell(script);
-    const int status = std::system(command.c_str());
-    if (status != 0) {
-      PrintError("sbatch refused the job (its message is above); the script is " + script);
-      return kExitScenarioError;
-    }
-    PrintNote(fmt::format("submitted {} (the job id above); follow with prs campaign status {}",
-                          FormatCount(static_cast<int64_t>(shards.size()), "shard"), args.dir));
-    return kExitSuccess;
   });
 }
 
@@ -253,26 +281,43 @@ CommandRunner ConfigureCampaignCommand(CLI::App& command) {
       ->check(NonEmptyPath());
   merge->add_flag("--partial", args->partial, "merge the done shards even when some are not");
   CLI::App* slurm = command.add_subcommand(
-      "slurm", "submit the unfinished shards as a Slurm job array (again to resume)");
-  slurm->add_option("DIR", args->dir, "the campaign directory")->required();
-  slurm->add_option("--partition", args->slurm.partition, "sbatch --partition")->type_name("P");
-  slurm->add_option("--time", args->slurm.time, "sbatch --time, per shard")->type_name("T");
-  slurm->add_option("--mem", args->slurm.mem, "sbatch --mem, per shard")->type_name("M");
-  slurm->add_option("--cpus-per-task", args->slurm.cpus_per_task, "CPUs (threads) per shard")
-      ->type_name("C")
-      ->check(IntegerInRange(1, 1024))
-      ->capture_default_str();
-  slurm->add_option("--max-running", args->slurm.max_running, "at most this many tasks at once")
-      ->type_name("N")
-      ->check(IntegerAtLeast(1));
-  slurm->add_option("--extra", args->extra, "more sbatch arguments, as one string")
-      ->type_name("ARGS");
-  slurm->add_flag("--print", args->print_only, "write and print the script, do not submit it");
-  return [args, init, run, status, slurm] {
+      "slurm", "submit the shards not done and not queued as a Slurm job array");
+  CLI::App* resume = command.add_subcommand(
+      "resume", "submit the shards not done and not queued again, as the last submission did");
+  for (CLI::App* sub : {slurm, resume}) {
+    sub->add_option("DIR", args->dir, "the campaign directory")->required();
+    const auto note = [args](const char* flag) {
+      return [args, flag](const auto&) { args->given.insert(flag); };
+    };
+    sub->add_option("--partition", args->slurm.partition, "sbatch --partition")
+        ->type_name("P")
+        ->each(note("--partition"));
+    sub->add_option("--time", args->slurm.time, "sbatch --time, per shard")
+        ->type_name("T")
+        ->each(note("--time"));
+    sub->add_option("--mem", args->slurm.mem, "sbatch --mem, per shard")
+        ->type_name("M")
+        ->each(note("--mem"));
+    sub->add_option("--cpus-per-task", args->slurm.cpus_per_task, "CPUs (threads) per shard")
+        ->type_name("C")
+        ->check(IntegerInRange(1, 1024))
+        ->each(note("--cpus-per-task"))
+        ->capture_default_str();
+    sub->add_option("--max-running", args->slurm.max_running, "at most this many tasks at once")
+        ->type_name("N")
+        ->check(IntegerAtLeast(1))
+        ->each(note("--max-running"));
+    sub->add_option("--extra", args->slurm.extra, "more sbatch arguments, as one string")
+        ->type_name("ARGS")
+        ->each(note("--extra"));
+    sub->add_flag("--print", args->print_only, "write and print the script, do not submit it");
+  }
+  return [args, init, run, status, slurm, resume] {
     if (init->parsed()) return RunInit(*args);
     if (run->parsed()) return RunShardCommand(*args);
     if (status->parsed()) return RunStatus(*args);
-    if (slurm->parsed()) return RunSlurm(*args);
+    if (slurm->parsed()) return RunSlurm(*args, false);
+    if (resume->parsed()) return RunSlurm(*args, true);
     return RunMerge(*args);
   };
 }

@@ -60,7 +60,7 @@ TEST_F(PrsTest, CampaignSlurmScriptRunsTheUnfinishedShards) {
   ASSERT_EQ(r.exit_code, 0) << r.err;
   EXPECT_NE(r.out.find("#SBATCH --array=0,2-5%2\n"), std::string::npos) << r.out;
   EXPECT_NE(r.out.find("#SBATCH --partition=debug\n"), std::string::npos) << r.out;
-  EXPECT_NE(r.out.find("/logs/shard-%a.out"), std::string::npos) << r.out;
+  EXPECT_NE(r.out.find("/logs/shard-%a.%A.out"), std::string::npos) << r.out;
   const std::string script = dir + "/slurm/submit-0.sh";
   ASSERT_TRUE(fs::exists(script));
   // What Slurm does with the script: run it once per array index, with the index set.
@@ -73,19 +73,85 @@ TEST_F(PrsTest, CampaignSlurmScriptRunsTheUnfinishedShards) {
   EXPECT_NE(r.out.find("6 of 6 done"), std::string::npos) << r.out;
   r = Run({"campaign", "slurm", dir, "--print"});
   EXPECT_EQ(r.exit_code, 0);
-  EXPECT_NE(r.err.find("nothing to submit"), std::string::npos) << r.err;
+  EXPECT_NE(r.err.find("no shard to submit"), std::string::npos) << r.err;
   const std::string merged = (dir_ / "merged.jsonl").string();
   r = Run({"campaign", "merge", dir, "-o", merged});
   ASSERT_EQ(r.exit_code, 0) << r.err;
   const Result single = Run({"sample", Example("table_cube.prs"), "-n", "30", "-s", "2"});
   EXPECT_EQ(ReadText(merged), single.out);
   // Without Slurm installed, submitting says so and where the script is.
-  if (std::system("command -v sbatch >/dev/null 2>&1") != 0) {
-    fs::remove(dir + "/shards/shard-00000.jsonl.done.json");
-    r = Run({"campaign", "slurm", dir});
-    EXPECT_EQ(r.exit_code, 1);
-    EXPECT_NE(r.err.find("sbatch is not installed"), std::string::npos) << r.err;
-  }
+  fs::remove(dir + "/shards/shard-00000.jsonl.done.json");
+  r = Run({"campaign", "slurm", dir}, "PATH=/nonexistent");
+  EXPECT_EQ(r.exit_code, 1);
+  EXPECT_NE(r.err.find("sbatch is not installed"), std::string::npos) << r.err;
+  EXPECT_NE(r.err.find("/slurm/submit-1.sh yourself"), std::string::npos) << r.err;
+}
+
+// sbatch and squeue stand-ins on PATH: what is submitted, recorded and resubmitted, and how the
+// queue's words show in `status` (tests/slurm/campaign_test.sh does the same on real Slurm).
+TEST_F(PrsTest, CampaignSlurmRecordsSubmissionsAndResumesWhatTheQueueLost) {
+  const std::string dir = (dir_ / "campaign").string();
+  const fs::path bin = dir_ / "bin";
+  fs::create_directories(bin);
+  const auto write_program = [&](const std::string& name, const std::string& text) {
+    Write("bin/" + name, "#!/bin/sh\n" + text);
+    fs::permissions(bin / name, fs::perms::owner_all);
+  };
+  // sbatch prints job ids 41, 42, ... and keeps its arguments; squeue knows job 41's tasks.
+  write_program("sbatch", "n=$(cat " + Quote((dir_ / "jobs").string()) +
+                              " 2>/dev/null || echo 40); n=$((n + 1)); echo $n > " +
+                              Quote((dir_ / "jobs").string()) + "; echo \"$@\" >> " +
+                              Quote((dir_ / "sbatch_args").string()) + "; echo $n\n");
+  write_program("squeue",
+                "printf '41|0|RUNNING|None\\n41|1|CANCELLED|None\\n41|2|PENDING|Priority\\n'\n");
+  const std::string env = "PATH=" + Quote(bin.string()) + ":/usr/bin:/bin";
+  Result r = Run({"campaign", "init", dir, Example("table_cube.prs"), "-n", "25", "--shard-size",
+                  "5", "-s", "2"});
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  r = Run({"campaign", "resume", dir}, env);
+  EXPECT_EQ(r.exit_code, 2);
+  EXPECT_NE(r.err.find("submit it first with prs campaign slurm"), std::string::npos) << r.err;
+
+  r = Run({"campaign", "slurm", dir, "--time", "00:05:00", "--max-running", "2", "--extra",
+           "--qos=low"},
+          env);
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  EXPECT_EQ(r.out, "41\n");
+  EXPECT_NE(ReadText(dir_ / "sbatch_args").find("--parsable --qos=low"), std::string::npos);
+  EXPECT_NE(ReadText(dir + "/slurm/submit-0.sh").find("#SBATCH --array=0-4%2\n"),
+            std::string::npos);
+  r = Run({"campaign", "run-shard", dir, "3", "--threads", "1"});
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+
+  r = Run({"campaign", "status", dir}, env);
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  EXPECT_NE(r.out.find("shard 0: running: Slurm job 41_0 is RUNNING"), std::string::npos) << r.out;
+  EXPECT_NE(r.out.find("shard 1: failed: Slurm job 41_1 ended CANCELLED"), std::string::npos)
+      << r.out;
+  EXPECT_NE(r.out.find("shard 4: failed: Slurm job 41_4 ended without writing it"),
+            std::string::npos)
+      << r.out;
+  EXPECT_NE(r.out.find("1 of 5 done, 1 queued, 1 running, 2 failed, 0 missing, 0 bad"),
+            std::string::npos)
+      << r.out;
+  EXPECT_NE(r.err.find("resume " + dir + " submits the 2 shards"), std::string::npos) << r.err;
+
+  // Resume: only shards 1 and 4, with the first submission's options unless given again.
+  r = Run({"campaign", "resume", dir, "--time", "00:09:00"}, env);
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  EXPECT_EQ(r.out, "42\n");
+  const std::string script = ReadText(dir + "/slurm/submit-1.sh");
+  EXPECT_NE(script.find("#SBATCH --array=1,4%2\n"), std::string::npos) << script;
+  EXPECT_NE(script.find("#SBATCH --time=00:09:00\n"), std::string::npos) << script;
+  EXPECT_NE(ReadText(dir_ / "sbatch_args").find("--parsable --qos=low"), std::string::npos);
+  EXPECT_TRUE(fs::exists(dir + "/slurm/submit-1.json"));
+
+  // Without squeue, status says the queue was not asked; resume warns it may submit twice.
+  r = Run({"campaign", "status", dir}, "PATH=/nonexistent");
+  EXPECT_NE(r.err.find("the Slurm queue was not asked: squeue is not installed"), std::string::npos)
+      << r.err;
+  EXPECT_NE(r.out.find("1 of 5 done, 0 queued, 0 running, 0 failed, 4 missing"), std::string::npos)
+      << r.out;
 }
 
 }  // namespace

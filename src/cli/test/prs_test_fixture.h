@@ -62,9 +62,10 @@ class PrsTest : public testing::Test {
     return (dir_ / name).string();
   }
 
-  // Runs `prs ARGS...` through the shell, capturing stdout and stderr.
-  Result Run(const std::vector<std::string>& args) {
-    std::string command = Quote(PRS_BINARY);
+  // Runs `prs ARGS...` through the shell, capturing stdout and stderr; `env` is put before it
+  // ("PATH=/x NAME=value").
+  Result Run(const std::vector<std::string>& args, const std::string& env = "") {
+    std::string command = (env.empty() ? "" : "env " + env + " ") + Quote(PRS_BINARY);
     for (const std::string& arg : args) command.append(" ").append(Quote(arg));
     const fs::path out = dir_ / "stdout.txt", err = dir_ / "stderr.txt";
     command.append(" >").append(Quote(out.string())).append(" 2>").append(Quote(err.string()));

@@ -1,0 +1,107 @@
+// Campaigns on Slurm (docs/cluster.md): the job-array script, the record of each submission
+// (DIR/slurm/submit-N.sh and .json), what squeue says about the campaign's array tasks, and each
+// shard's state from its files and the queue together — what `prs campaign status` prints and
+// what `prs campaign resume` resubmits.
+#pragma once
+
+#include <cstdint>
+#include <map>
+#include <optional>
+#include <string>
+#include <vector>
+
+#include "campaign/campaign.h"
+
+namespace prs::campaign {
+
+/// What `prs campaign slurm` puts in the job script.
+struct SlurmOptions {
+  std::string partition;  // --partition, when set
+  std::string time;       // --time (e.g. "01:00:00"), when set
+  std::string mem;        // --mem (e.g. "4G"), when set
+  int cpus_per_task = 1;  // --cpus-per-task; run-shard uses as many threads
+  int max_running = 0;    // the array's % throttle, when > 0
+  std::string prs;        // the prs program to run (an absolute path)
+  std::string extra;      // more sbatch arguments, given to sbatch as they are
+};
+
+/// The sbatch script of a job array with one task per shard in `shards` (the array's indices
+/// are the shard numbers), named SlurmJobName(spec), logs in DIR/logs/shard-K.JOB.out and .err
+/// (JOB: the array's job id, so a resubmission keeps the earlier logs), each task running
+/// `prs campaign run-shard DIR $SLURM_ARRAY_TASK_ID`. `dir` should be absolute.
+std::string FormatSlurmScript(const std::string& dir, const CampaignSpec& spec,
+                              const std::vector<uint64_t>& shards, const SlurmOptions& options);
+
+/// "prs-" and the first 8 characters of the campaign id: how squeue finds the campaign's jobs.
+std::string SlurmJobName(const CampaignSpec& spec);
+
+/// One accepted sbatch: DIR/slurm/submit-N.sh and its record DIR/slurm/submit-N.json.
+struct SlurmSubmission {
+  int number = 0;                // N
+  std::string job_id;            // the array job id sbatch printed
+  std::vector<uint64_t> shards;  // the array's indices
+  SlurmOptions options;
+};
+
+/// Writes the script of submission `number` (DIR/slurm/submit-N.sh) atomically; returns its path.
+std::string WriteSlurmScript(const std::string& dir, int number, const std::string& script);
+
+/// The next free N of DIR/slurm/submit-N.sh.
+int FindNextSubmissionNumber(const std::string& dir);
+
+/// Records an accepted submission (DIR/slurm/submit-N.json, atomically).
+void WriteSubmission(const std::string& dir, const SlurmSubmission& submission);
+
+/// Every recorded submission, oldest first. A record that cannot be read is skipped.
+std::vector<SlurmSubmission> ReadSubmissions(const std::string& dir);
+
+/// Runs `sbatch --parsable [extra] SCRIPT` and returns the job id it prints. Throws
+/// CampaignError when sbatch is not installed or refuses the job (with its message).
+std::string SubmitToSlurm(const std::string& script, const std::string& extra);
+
+/// One array task as squeue lists it.
+struct QueuedTask {
+  std::string job_id;   // the array job id
+  std::string state;    // Slurm's word: PENDING, RUNNING, CANCELLED, FAILED, TIMEOUT, ...
+  std::string reason;   // squeue's %r (why pending), or "None"
+  bool active() const;  // still queued or running (the shard may yet be written)
+};
+
+/// What squeue says about a campaign: for each shard, its task of the latest submission squeue
+/// still knows. `available` is false (and `why_not` says why) when squeue could not be asked.
+struct SlurmQueue {
+  bool available = false;
+  std::string why_not;
+  std::map<uint64_t, QueuedTask> tasks;
+};
+
+/// Parses `squeue --noheader --array --states=all --format=%F|%K|%T|%r` lines (%F: the array's
+/// job id; %A would be each task's own), keeping the
+/// tasks of the given array job ids; for a shard listed twice, the later job wins.
+std::map<uint64_t, QueuedTask> ParseSqueueLines(const std::string& text,
+                                                const std::vector<std::string>& job_ids);
+
+/// Asks squeue about the campaign's recorded submissions (none recorded: available, empty).
+SlurmQueue QuerySlurmQueue(const std::string& dir, const CampaignSpec& spec);
+
+/// A shard's state from its files and the queue together.
+struct ShardState {
+  enum class Kind {
+    kDone,     // written and checked
+    kQueued,   // its array task waits in the queue
+    kRunning,  // its array task runs (or a .partial file exists and the queue is not known)
+    kFailed,   // submitted, no longer in the queue, not written: cancelled, killed, timed out
+    kMissing,  // never submitted (as far as the records show), not written
+    kBad,      // a written file that cannot be trusted (CheckShard's reason)
+  } kind = Kind::kMissing;
+  std::string why;  // what the files, squeue and the task's log say
+};
+
+/// Every shard's state. `queue` may be unavailable (then running/failed come from files only).
+std::vector<ShardState> DescribeShards(const std::string& dir, const CampaignSpec& spec,
+                                       const SlurmQueue& queue);
+
+/// The shards `prs campaign resume` submits again: neither done nor queued nor running.
+std::vector<uint64_t> FindShardsToResubmit(const std::vector<ShardState>& states);
+
+}  // namespace prs::campaign

@@ -1,0 +1,107 @@
+#!/usr/bin/env bash
+# A campaign on a real single-node Slurm (tests/slurm/cluster.sh), as docs/cluster.md walks it:
+# init a 9-shard Table-Cube test campaign, submit it as a job array (at most 2 tasks at once),
+# cancel one running task with scancel and SIGKILL another task's prs, check that `prs campaign
+# status` reports both as failed, `prs campaign resume`, wait, merge, and compare the merged
+# records with one machine's `prs test` of the same N and seed (every field but wall_s).
+# Without root or Slurm's packages it prints SKIPPED and the reason, and exits 0; on Debian 12
+# as root after scripts/setup.sh it must run.
+# Usage: tests/slurm/campaign_test.sh PRS_BINARY
+set -euo pipefail
+prs=$(realpath "${1:?usage: tests/slurm/campaign_test.sh PRS_BINARY}")
+cd "$(dirname "$0")/../.."
+example=$PWD/examples/table_cube.prs
+
+skip() {
+  echo "=================================================================" >&2
+  echo "slurm campaign test: SKIPPED: $*" >&2
+  echo "(install munge slurmctld slurmd slurm-client and run as root to test)" >&2
+  echo "=================================================================" >&2
+  exit 0
+}
+[[ $(id -u) -eq 0 ]] || skip "not root (slurmd must start jobs as their user)"
+for program in munged slurmctld slurmd sbatch; do
+  PATH=$PATH:/usr/sbin command -v "$program" >/dev/null || skip "$program is not installed"
+done
+
+work=$(mktemp -d /tmp/prs_slurm_test.XXXXXX)
+chmod 755 "$work"
+cleanup() {
+  tests/slurm/cluster.sh stop "$work/cluster" || true
+  rm -rf "$work"
+}
+trap cleanup EXIT
+eval "$(tests/slurm/cluster.sh start "$work/cluster")"  # sets SLURM_CONF
+export SLURM_CONF
+
+fail() {
+  echo "slurm campaign test: FAILED: $*" >&2
+  echo "--- squeue:" >&2; squeue --array --states=all >&2 || true
+  echo "--- slurmctld.log (end):" >&2; tail -20 "$work/cluster/log/slurmctld.log" >&2 || true
+  exit 1
+}
+# wait_for SECONDS COMMAND...: polls COMMAND every 0.2 s until it succeeds.
+wait_for() {
+  local seconds=$1
+  shift
+  for _ in $(seq $((seconds * 5))); do "$@" && return 0; sleep 0.2; done
+  return 1
+}
+task_state() { squeue --noheader --array --states=all --jobs="$1" --format='%K %T' 2>/dev/null; }
+is_running() { task_state "$1" | grep -q "^$2 RUNNING$"; }
+shard_process() { pgrep -f "campaign run-shard $camp $1 " >/dev/null; }
+shard_gone() { ! shard_process "$1"; }
+ended_as() { task_state "$1" | grep -q "^$2 $3$"; }
+campaign_idle() { ! squeue --noheader --array --jobs="$1" --states=PENDING,RUNNING,COMPLETING \
+  --format=%T 2>/dev/null | grep -q .; }
+
+camp=$work/camp
+n=100
+"$prs" campaign init "$camp" "$example" --controller table-cube -n $n --shard-size 12 -s 7
+job=$("$prs" campaign slurm "$camp" --max-running 2 --time 00:10:00)
+echo "slurm campaign test: submitted job $job" >&2
+
+# Cancel shard 0's task while it runs; SIGKILL shard 1's prs (a node losing the process).
+wait_for 60 is_running "$job" 0 || fail "shard 0 never ran"
+scancel "${job}_0"
+wait_for 60 shard_process 1 || fail "shard 1's prs never started"
+pkill -KILL -f "campaign run-shard $camp 1 " || fail "could not kill shard 1's prs"
+wait_for 30 shard_gone 1 || fail "shard 1's prs lives on after SIGKILL"
+wait_for 60 ended_as "$job" 0 CANCELLED || fail "Slurm did not record shard 0 as cancelled"
+wait_for 60 ended_as "$job" 1 FAILED || fail "Slurm did not record shard 1 as failed"
+
+status=$("$prs" campaign status "$camp")
+echo "$status" >&2
+grep -q "^shard 0: failed: Slurm job ${job}_0 ended CANCELLED" <<<"$status" ||
+  fail "status does not report the cancelled shard 0"
+grep -q "^shard 1: failed: Slurm job ${job}_1 ended FAILED" <<<"$status" ||
+  fail "status does not report the killed shard 1"
+
+wait_for 240 campaign_idle "$job" || fail "the job array did not finish in 240 s"
+status=$("$prs" campaign status "$camp" 2>&1)
+grep -q "7 of 9 done, 0 queued, 0 running, 2 failed" <<<"$status" || fail "after the array: $status"
+resumed=$("$prs" campaign resume "$camp")
+grep -q "#SBATCH --array=0-1%2" "$camp/slurm/submit-1.sh" || fail "resume did not submit 0 and 1"
+grep -q "#SBATCH --time=00:10:00" "$camp/slurm/submit-1.sh" || fail "resume lost --time"
+wait_for 240 campaign_idle "$resumed" || fail "the resumed array did not finish in 240 s"
+status=$("$prs" campaign status "$camp" 2>&1)
+grep -q "9 of 9 done" <<<"$status" || fail "after resume: $status"
+"$prs" campaign merge "$camp" -o "$work/merged.jsonl"
+
+"$prs" test "$example" --controller table-cube -n $n -s 7 -o "$work/single.jsonl" >/dev/null
+python3 - "$work/merged.jsonl" "$work/single.jsonl" <<'EOF' || fail "merged != one machine's run"
+import json, sys
+def records(path):
+    out = []
+    for line in open(path):
+        r = json.loads(line)
+        r.pop("wall_s", None)
+        out.append(r)
+    return out
+merged, single = records(sys.argv[1]), records(sys.argv[2])
+assert len(merged) == len(single) == 100, (len(merged), len(single))
+for i, (a, b) in enumerate(zip(merged, single)):
+    assert a == b, f"record {i} differs"
+print("slurm campaign test: 100 merged records equal one machine's run but wall_s", file=sys.stderr)
+EOF
+echo "slurm campaign test: passed" >&2
