@@ -22,7 +22,7 @@ from ._errors import SamplingError, ScenarioError
 __version__ = "0.1.0"
 __all__ = [
     "load", "loads", "Scenario", "Scene", "SceneObject", "ScenarioError", "SamplingError",
-    "positions", "dimensions", "quaternions", "yaw_pitch_roll", "search", "report",
+    "positions", "dimensions", "quaternions", "yaw_pitch_roll", "search", "report", "campaign",
 ]
 
 PathLike = Union[str, "os.PathLike[str]"]
@@ -141,3 +141,6 @@ def report(records: Union[PathLike, Iterable[Mapping[str, Any]]]) -> str:
         with open(path, encoding="utf-8") as f:
             return _core.report_markdown(f.read().splitlines(), path)
     return _core.report_markdown([json.dumps(r) for r in records], "<records>")
+
+
+from . import campaign  # noqa: E402  (probrobscene.campaign.run: shards on a Dask cluster)

@@ -9,6 +9,8 @@
 #include <memory>
 #include <optional>
 #include <string>
+#include <utility>
+#include <vector>
 
 #include "lang/lang.h"
 #include "sampling/sampler.h"
@@ -58,6 +60,20 @@ Eigen::Vector3d CalcObjectYawPitchRoll(const lang::SceneObject& object);
 /// "incompatible function arguments".
 uint64_t ToSceneNumber(const py::object& value, const char* name);
 
+/// What load() and loads() pass to the compiler and the sampler (probrobscene.load's arguments).
+struct LoadOptions {
+  std::vector<std::string> search_path;
+  std::vector<std::pair<std::string, std::string>> params;
+  int64_t max_attempts = 10'000;
+  bool naive = false;
+};
+
+/// scenario.cc: compiles `text` (or the file `path` when `text` is null), raising
+/// ScenarioError for the first error, with every error rendered in its text.
+std::shared_ptr<lang::CompiledProgram> CompileProgram(const std::string& path,
+                                                      const std::optional<std::string>& text,
+                                                      const LoadOptions& load);
+
 /// Registers Scene, SceneObject and the batch helpers (scene.cc).
 void BindScene(py::module_& m);
 /// Adds Scene.export and Scene.render (scene_files.cc).
@@ -75,5 +91,7 @@ py::list RunPythonSearch(const ProgramPtr& program, const sampling::SampleOption
                          std::optional<int64_t> batch);
 /// search.cc: report_markdown(lines, title).
 void BindSearch(py::module_& m);
+/// campaign.cc: campaign_init, campaign_run_shard, campaign_status, campaign_merge.
+void BindCampaign(py::module_& m);
 
 }  // namespace prs::python

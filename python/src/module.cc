@@ -7,4 +7,5 @@ PYBIND11_MODULE(_core, m) {
   prs::python::BindScene(m);
   prs::python::BindScenario(m);
   prs::python::BindSearch(m);
+  prs::python::BindCampaign(m);
 }

@@ -196,17 +196,20 @@ py::list Scenario::DescribeClasses(const analysis::ScenarioOutline& outline) con
   return classes;
 }
 
-struct LoadOptions {
-  std::vector<std::string> search_path;
-  std::vector<std::pair<std::string, std::string>> params;
-  int64_t max_attempts = 10'000;
-  bool naive = false;
-};
-
-// Compiles `text` (or the file `path` when `text` is null), raising ScenarioError for the
-// first error, with every error rendered in its text.
 std::unique_ptr<Scenario> Compile(const std::string& path, const std::optional<std::string>& text,
                                   const LoadOptions& load) {
+  std::shared_ptr<lang::CompiledProgram> program = CompileProgram(path, text, load);
+  sampling::SampleOptions sample;
+  sample.max_attempts = load.max_attempts;
+  sample.run.mode = load.naive ? lang::SamplingMode::kNaive : lang::SamplingMode::kRegion;
+  return std::make_unique<Scenario>(std::move(program), path, sample);
+}
+
+}  // namespace
+
+std::shared_ptr<lang::CompiledProgram> CompileProgram(const std::string& path,
+                                                      const std::optional<std::string>& text,
+                                                      const LoadOptions& load) {
   if (load.max_attempts < 1) {
     throw py::value_error("max_attempts must be >= 1, got " + std::to_string(load.max_attempts));
   }
@@ -223,13 +226,8 @@ std::unique_ptr<Scenario> Compile(const std::string& path, const std::optional<s
       RaiseScenarioError(d, program->sources, RenderErrors(diagnostics, program->sources), path);
     }
   }
-  sampling::SampleOptions sample;
-  sample.max_attempts = load.max_attempts;
-  sample.run.mode = load.naive ? lang::SamplingMode::kNaive : lang::SamplingMode::kRegion;
-  return std::make_unique<Scenario>(std::move(program), path, sample);
+  return program;
 }
-
-}  // namespace
 
 void BindScenario(py::module_& m) {
   py::class_<Scenario>(m, "Scenario", "A compiled scenario; sample scenes from it.")

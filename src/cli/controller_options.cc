@@ -5,9 +5,8 @@
 
 #include <filesystem>
 
-#include "cli/builtin_controllers.h"
+#include "controllers/builtin.h"
 #include "cli/text_table.h"
-#include "harness/exec_controller.h"
 #include "harness/registry.h"
 
 namespace prs::cli {
@@ -32,7 +31,7 @@ CLI::Validator PositiveSeconds() {
 }  // namespace
 
 void AddControllerOptions(CLI::App& command, ControllerArgs& args) {
-  RegisterBuiltInControllers();
+  controllers::RegisterBuiltInControllers();
   CLI::Option* controller = command
                                 .add_option("--controller", args.controller,
                                             "a built-in controller (" + ListControllerNames() + ")")
@@ -48,13 +47,7 @@ void AddControllerOptions(CLI::App& command, ControllerArgs& args) {
       ->capture_default_str();
 }
 
-std::string ListControllerNames() {
-  std::string names;
-  for (const harness::ControllerInfo& info : harness::ListControllers()) {
-    names += (names.empty() ? "" : ", ") + info.name;
-  }
-  return names;
-}
+std::string ListControllerNames() { return controllers::ListControllerNames(); }
 
 std::optional<harness::ControllerFactory> ChooseController(const ControllerArgs& args,
                                                            const std::atomic<bool>& cancel) {
@@ -63,12 +56,9 @@ std::optional<harness::ControllerFactory> ChooseController(const ControllerArgs&
                ") or --exec CMD");
     return std::nullopt;
   }
-  if (!args.exec.empty()) {
-    const harness::ExecOptions options{args.exec, args.timeout_s, &cancel};
-    return [options] { return std::make_unique<harness::ExecController>(options); };
-  }
-  if (const harness::ControllerInfo* info = harness::FindController(args.controller)) {
-    return info->factory;
+  if (auto factory =
+          controllers::MakeControllerFactory(args.controller, args.exec, args.timeout_s, &cancel)) {
+    return factory;
   }
   std::vector<std::string> names;
   for (const harness::ControllerInfo& info : harness::ListControllers()) names.push_back(info.name);

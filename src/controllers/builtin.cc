@@ -1,13 +1,14 @@
 // Adapters from the simulated controllers' own result types to the harness's Controller
 // interface, so that src/sim and src/harness need not know each other.
-#include "cli/builtin_controllers.h"
+#include "controllers/builtin.h"
 
 #include <mutex>
 
+#include "harness/exec_controller.h"
 #include "harness/registry.h"
 #include "sim/table_cube_controller.h"
 
-namespace prs::cli {
+namespace prs::controllers {
 namespace {
 
 // The paper's case-study controller (MuJoCo, camera perception, inverse kinematics); one per
@@ -48,4 +49,26 @@ void RegisterBuiltInControllers() {
   });
 }
 
-}  // namespace prs::cli
+std::string ListControllerNames() {
+  RegisterBuiltInControllers();
+  std::string names;
+  for (const harness::ControllerInfo& info : harness::ListControllers()) {
+    names += (names.empty() ? "" : ", ") + info.name;
+  }
+  return names;
+}
+
+std::optional<harness::ControllerFactory> MakeControllerFactory(const std::string& name,
+                                                                const std::string& exec,
+                                                                double timeout_s,
+                                                                const std::atomic<bool>* cancel) {
+  if (!exec.empty()) {
+    const harness::ExecOptions options{exec, timeout_s, cancel};
+    return [options] { return std::make_unique<harness::ExecController>(options); };
+  }
+  RegisterBuiltInControllers();
+  if (const harness::ControllerInfo* info = harness::FindController(name)) return info->factory;
+  return std::nullopt;
+}
+
+}  // namespace prs::controllers

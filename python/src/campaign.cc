@@ -1,0 +1,148 @@
+// Campaigns from Python (docs/cluster.md): the same campaign directories, shard files, status and
+// merge as `prs campaign`, for probrobscene.campaign, which maps shards over a Dask cluster.
+#include "campaign/campaign.h"
+
+#include <pybind11/stl.h>
+
+#include "bindings.h"
+#include "campaign/slurm.h"
+#include "controllers/builtin.h"
+#include "output/line_writer.h"
+
+namespace prs::python {
+namespace {
+
+// CampaignError (not a campaign, a changed spec, a shard out of range, shards not done) is a
+// ValueError; a scenario error in the copied spec is a ScenarioError.
+template <typename Body>
+auto CallCampaign(Body body) -> decltype(body()) {
+  try {
+    return body();
+  } catch (const campaign::CampaignError& error) {
+    throw py::value_error(error.what());
+  }
+}
+
+harness::ControllerFactory ChooseFactory(const campaign::CampaignSpec& spec) {
+  if (auto factory =
+          controllers::MakeControllerFactory(spec.controller, spec.exec, spec.timeout_s, nullptr)) {
+    return *factory;
+  }
+  throw py::value_error("unknown controller '" + spec.controller +
+                        "' (controllers: " + controllers::ListControllerNames() + ")");
+}
+
+std::string Init(const std::string& dir, const std::string& path, const LoadOptions& load,
+                 uint64_t count, uint64_t shard_size, const py::object& seed_arg,
+                 const std::string& controller, const std::string& exec, double timeout_s) {
+  campaign::CampaignSpec spec;
+  spec.kind = controller.empty() && exec.empty() ? "sample" : "test";
+  spec.controller = controller;
+  spec.exec = exec;
+  spec.timeout_s = timeout_s;
+  if (!controller.empty() && !exec.empty()) {
+    throw py::value_error("give a controller or exec, not both");
+  }
+  if (!controller.empty()) ChooseFactory(spec);  // an unknown name fails now, not in a shard
+  const std::shared_ptr<lang::CompiledProgram> program = CompileProgram(path, std::nullopt, load);
+  // The words of `prs test FILE -I DIR -p NAME=VALUE --naive`, as the records' regenerate
+  // commands name the scenario.
+  spec.scenario_words = {path};
+  for (const std::string& dir_name : load.search_path) {
+    spec.scenario_words.insert(spec.scenario_words.end(), {"-I", dir_name});
+  }
+  for (const auto& [name, value] : load.params) {
+    spec.scenario_words.insert(spec.scenario_words.end(), {"-p", name + "=" + value});
+  }
+  if (load.naive) spec.scenario_words.push_back("--naive");
+  spec.params = load.params;
+  spec.naive = load.naive;
+  spec.max_attempts = load.max_attempts;
+  spec.seed = ToSceneNumber(seed_arg, "seed");
+  spec.count = count;
+  spec.shard_size = shard_size;
+  spec.version = PRS_VERSION;
+  return CallCampaign([&] { return campaign::InitCampaign(dir, *program, spec).id; });
+}
+
+// Runs shard k with the GIL released (a Dask worker keeps answering its scheduler meanwhile).
+void RunShard(const std::string& dir, uint64_t k, int threads) {
+  if (threads < 1) throw py::value_error("threads must be >= 1, got " + std::to_string(threads));
+  CallCampaign([&] {
+    const campaign::CampaignSpec spec = campaign::ReadCampaign(dir);
+    const std::unique_ptr<lang::CompiledProgram> program = campaign::CompileCampaign(dir, spec);
+    std::optional<harness::ControllerFactory> factory;
+    if (spec.kind == "test") factory = ChooseFactory(spec);
+    try {
+      py::gil_scoped_release release;
+      campaign::RunShard(dir, spec, *program, k, factory ? &*factory : nullptr, threads, nullptr);
+    } catch (const lang::ScenarioError& error) {
+      RaiseScenarioError(error.diagnostic(), program->sources,
+                         lang::RenderDiagnostic(error.diagnostic(), program->sources));
+    }
+  });
+}
+
+py::dict Status(const std::string& dir) {
+  return CallCampaign([&] {
+    const campaign::CampaignSpec spec = campaign::ReadCampaign(dir);
+    const campaign::SlurmQueue queue = campaign::QuerySlurmQueue(dir, spec);
+    const std::vector<campaign::ShardState> states = campaign::DescribeShards(dir, spec, queue);
+    constexpr const char* kNames[] = {"done", "queued", "running", "failed", "missing", "bad"};
+    py::dict counts;
+    for (const char* name : kNames) counts[name] = 0;
+    py::list shards, to_run;
+    for (uint64_t k = 0; k < states.size(); ++k) {
+      // Not done and not left to Slurm: what probrobscene.campaign.run runs.
+      const auto task = queue.tasks.find(k);
+      if (states[k].kind != campaign::ShardState::Kind::kDone &&
+          (task == queue.tasks.end() || !task->second.active())) {
+        to_run.append(k);
+      }
+      const char* name = kNames[static_cast<int>(states[k].kind)];
+      counts[name] = counts[name].cast<int64_t>() + 1;
+      py::dict shard;
+      shard["shard"] = k;
+      shard["state"] = name;
+      shard["why"] = states[k].why;
+      shards.append(shard);
+    }
+    py::dict status;
+    status["campaign"] = spec.id;
+    status["kind"] = spec.kind;
+    status["count"] = spec.count;
+    status["shards"] = shards;
+    status["counts"] = counts;
+    status["to_run"] = to_run;
+    status["queue"] = queue.available ? py::object(py::none()) : py::str(queue.why_not);
+    return status;
+  });
+}
+
+py::dict Merge(const std::string& dir, const std::string& output, bool partial) {
+  return CallCampaign([&] {
+    const campaign::CampaignSpec spec = campaign::ReadCampaign(dir);
+    std::vector<uint64_t> skipped;
+    const std::vector<std::string> lines = campaign::MergeShards(dir, spec, partial, &skipped);
+    output::LineWriter out(output);
+    for (const std::string& line : lines) out.AddLine(line);
+    out.Commit();
+    py::dict result;
+    result["lines"] = lines.size();
+    result["skipped"] = skipped;
+    return result;
+  });
+}
+
+}  // namespace
+
+void BindCampaign(py::module_& m) {
+  m.def("campaign_init", &Init, py::arg("dir"), py::arg("path"), py::arg("options"),
+        py::arg("count"), py::arg("shard_size"), py::arg("seed"), py::arg("controller"),
+        py::arg("exec"), py::arg("timeout_s"));
+  m.def("campaign_run_shard", &RunShard, py::arg("dir"), py::arg("shard"), py::arg("threads"));
+  m.def("campaign_status", &Status, py::arg("dir"));
+  m.def("campaign_merge", &Merge, py::arg("dir"), py::arg("output"), py::arg("partial"));
+}
+
+}  // namespace prs::python

@@ -1,0 +1,116 @@
+"""probrobscene.campaign on a real Dask LocalCluster (two worker processes): a merged campaign is
+one machine's run, shards done before are not run again, the CLI and Python share directories,
+and bad directories get clear errors."""
+
+import json
+import os
+
+import pytest
+
+import probrobscene as prs
+import probrobscene.campaign as campaign
+from conftest import EXAMPLES, run_prs
+
+distributed = pytest.importorskip("distributed", reason="python3-distributed is not installed")
+
+TABLE_CUBE = str(EXAMPLES / "table_cube.prs")
+
+
+@pytest.fixture(scope="module")
+def client():
+    with distributed.LocalCluster(n_workers=2, threads_per_worker=1, processes=True,
+                                  dashboard_address=None) as cluster:
+        with distributed.Client(cluster) as dask_client:
+            yield dask_client
+
+
+def records_without_times(path):
+    records = []
+    with open(path, encoding="utf-8") as f:
+        for line in f:
+            record = json.loads(line)
+            record.pop("wall_s")
+            records.append(record)
+    return records
+
+
+def test_dask_test_campaign_equals_one_machines_run(client, prs_binary, tmp_path):
+    camp = tmp_path / "camp"
+    # Shard 2 is done before the cluster starts: run() must leave it alone.
+    campaign.init(camp, TABLE_CUBE, 26, seed=3, shard_size=5, controller="table-cube")
+    campaign.run_shard(camp, 2)
+    done_before = os.stat(camp / "shards" / "shard-00002.jsonl").st_mtime_ns
+    assert campaign.status(camp)["to_run"] == [0, 1, 3, 4, 5]
+
+    status = campaign.run(camp, client)
+    assert status["counts"]["done"] == 6 and status["to_run"] == []
+    assert os.stat(camp / "shards" / "shard-00002.jsonl").st_mtime_ns == done_before
+    assert campaign.merge(camp, tmp_path / "merged.jsonl") == {"lines": 26, "skipped": []}
+
+    result = run_prs(prs_binary, "test", TABLE_CUBE, "--controller", "table-cube", "-n", "26",
+                     "-s", "3", "-o", str(tmp_path / "single.jsonl"))
+    assert result.returncode == 0, result.stderr
+    assert records_without_times(tmp_path / "merged.jsonl") == \
+        records_without_times(tmp_path / "single.jsonl")
+
+
+def test_dask_scene_campaign_from_a_scenario_file_equals_prs_sample(client, prs_binary,
+                                                                    tmp_path):
+    camp = tmp_path / "scenes"
+    status = campaign.run(TABLE_CUBE, client, dir=camp, n=300, shard_size=64, seed=9,
+                          threads_per_shard=2)
+    assert status["kind"] == "sample" and status["counts"]["done"] == 5
+    campaign.merge(camp, tmp_path / "merged.jsonl")
+    expected = run_prs(prs_binary, "sample", TABLE_CUBE, "-n", "300", "-s", "9")
+    assert expected.returncode == 0, expected.stderr
+    assert (tmp_path / "merged.jsonl").read_text() == expected.stdout
+    # The command line reads the same directory.
+    result = run_prs(prs_binary, "campaign", "status", str(camp))
+    assert "5 of 5 done" in result.stdout, result.stdout
+
+
+def test_a_campaign_made_by_prs_runs_here_without_a_cluster(prs_binary, tmp_path):
+    camp = tmp_path / "camp"
+    result = run_prs(prs_binary, "campaign", "init", str(camp), TABLE_CUBE, "-n", "40",
+                     "--shard-size", "16", "-s", "4", "--controller", "demo-reach")
+    assert result.returncode == 0, result.stderr
+    status = campaign.run(camp)
+    assert status["counts"] == {"done": 3, "queued": 0, "running": 0, "failed": 0,
+                                "missing": 0, "bad": 0}
+    result = run_prs(prs_binary, "campaign", "merge", str(camp), "-o", str(tmp_path / "m.jsonl"))
+    assert result.returncode == 0, result.stderr
+    result = run_prs(prs_binary, "test", TABLE_CUBE, "--controller", "demo-reach", "-n", "40",
+                     "-s", "4", "-o", str(tmp_path / "single.jsonl"))
+    assert records_without_times(tmp_path / "m.jsonl") == \
+        records_without_times(tmp_path / "single.jsonl")
+
+
+def test_bad_campaigns_and_arguments_are_clear_errors(tmp_path):
+    with pytest.raises(ValueError, match="not a campaign directory: to make one"):
+        campaign.run(tmp_path / "nothing.prs")
+    with pytest.raises(ValueError, match="unknown controller 'tabel-cube'"):
+        campaign.init(tmp_path / "c0", TABLE_CUBE, 10, controller="tabel-cube")
+    with pytest.raises(prs.ScenarioError):
+        (tmp_path / "broken.prs").write_text("x = Cube on\n")
+        campaign.init(tmp_path / "c1", tmp_path / "broken.prs", 10)
+
+    camp = tmp_path / "camp"
+    campaign.init(camp, TABLE_CUBE, 10, shard_size=4)
+    with pytest.raises(ValueError, match="campaign already"):
+        campaign.run(camp, n=5)
+    with pytest.raises(ValueError, match="there is no shard 3"):
+        campaign.run_shard(camp, 3)
+    with pytest.raises(ValueError, match="shards not done: 0, 1, 2"):
+        campaign.merge(camp, tmp_path / "out.jsonl")
+    assert not (tmp_path / "out.jsonl").exists()
+    assert campaign.merge(camp, tmp_path / "out.jsonl", partial=True) == \
+        {"lines": 0, "skipped": [0, 1, 2]}
+    with pytest.raises(ValueError, match="not empty|in use|exists"):
+        campaign.init(camp, TABLE_CUBE, 10)
+    # An edited spec is refused by every shard.
+    spec = camp / "spec" / "table_cube.prs"
+    spec.write_text(spec.read_text() + "\n# edited\n")
+    with pytest.raises(ValueError, match="changed"):
+        campaign.run_shard(camp, 0)
+    with pytest.raises(ValueError, match="campaign.json"):
+        campaign.status(tmp_path)
