@@ -27,18 +27,27 @@ PathLike = Union[str, "os.PathLike[str]"]
 def init(dir: PathLike, path: PathLike, n: int, *, seed: int = 0, shard_size: int = 1000,
          controller: Optional[str] = None, exec: Optional[str] = None, timeout: float = 60.0,
          params: Optional[Mapping[str, Any]] = None, search_path: Sequence[PathLike] = (),
-         max_attempts: int = 10_000, naive: bool = False) -> str:
+         max_attempts: int = 10_000, naive: bool = False, search: Optional[str] = None,
+         batch: Optional[int] = None) -> str:
     """Makes the campaign directory ``dir`` (new or empty), as ``prs campaign init``: ``n``
     episodes of ``controller`` (a built-in name) or ``exec`` (a shell command, docs/harness.md)
     in the scenario file ``path``, or ``n`` scenes without either, in shards of ``shard_size``.
-    Returns the campaign id. Raises ScenarioError for a scenario that does not compile and
-    ValueError for a directory that is in use or an unknown controller."""
+    With ``search`` ("ce", "anneal" or "random") the episodes are a failure search of budget
+    ``n`` in generations of ``batch`` (default as ``prs search``), run generation after
+    generation (docs/search.md). Returns the campaign id. Raises ScenarioError for a scenario
+    that does not compile and ValueError for a directory that is in use or an unknown
+    controller or strategy."""
     from . import _load_options  # the package's own conversion of params and options
     if n < 1 or shard_size < 1:
         raise ValueError(f"n and shard_size must be >= 1, got {n} and {shard_size}")
     options = _load_options(params, search_path, max_attempts, naive)
+    if search is not None and search not in ("ce", "anneal", "random"):
+        raise ValueError(f"unknown search strategy {search!r} (strategies: ce, anneal, random)")
+    if batch is not None and (search is None or batch < 1):
+        raise ValueError("batch is a search's generation size (>= 1): give search= too")
     return _core.campaign_init(os.fspath(dir), os.fspath(path), options, n, shard_size, seed,
-                               controller or "", exec or "", float(timeout))
+                               controller or "", exec or "", float(timeout), search or "",
+                               batch or 0)
 
 
 def run_shard(dir: PathLike, shard: int, threads: int = 1) -> int:
@@ -50,9 +59,10 @@ def run_shard(dir: PathLike, shard: int, threads: int = 1) -> int:
 
 def status(dir: PathLike) -> Dict[str, Any]:
     """Where the campaign stands, as ``prs campaign status`` prints it: ``"counts"`` of done,
-    queued, running, failed, missing and bad shards; ``"shards"``, one dict per shard (shard,
-    state, why); ``"to_run"``, the shards neither done nor queued or running on Slurm;
-    ``"queue"``, None or why squeue could not be asked."""
+    queued, running, failed, missing, bad and waiting (a search's later generations) shards;
+    ``"shards"``, one dict per shard (shard, state, why); ``"to_run"``, the shards that can run
+    now and are neither done nor queued or running on Slurm; ``"queue"``, None or why squeue
+    could not be asked."""
     return _core.campaign_status(os.fspath(dir))
 
 
@@ -77,7 +87,9 @@ def run(dir_or_spec: PathLike, client=None, *, dir: Optional[PathLike] = None,
     With a ``dask.distributed`` ``client`` each shard is one task (``retries`` times again if
     its worker dies), run on ``threads_per_shard`` threads; the workers must see ``dir`` (a
     shared file system, or a LocalCluster). Without one the shards run here, on every CPU.
-    Shards Slurm has queued or is running are left to it. Raises the first shard's error."""
+    A search campaign runs generation after generation, each planned from the records of the
+    one before. Shards Slurm has queued or is running are left to it. Raises the first shard's
+    error."""
     if _is_campaign(dir_or_spec):
         if dir is not None or n is not None or init_options:
             raise ValueError(f"{os.fspath(dir_or_spec)} is a campaign already: its options are "
@@ -90,15 +102,24 @@ def run(dir_or_spec: PathLike, client=None, *, dir: Optional[PathLike] = None,
         init(dir, dir_or_spec, n, **init_options)
         where = os.fspath(dir)
     where = os.path.abspath(where)
-    shards = status(where)["to_run"]
-    if client is None:
-        for shard in shards:
-            run_shard(where, shard, os.cpu_count() or 1)
-        return status(where)
+    while True:
+        _core.campaign_plan(where)  # a search's next generation, once the one before is done
+        current = status(where)
+        shards = current["to_run"]
+        if not shards:
+            return current
+        if client is None:
+            for shard in shards:
+                run_shard(where, shard, os.cpu_count() or 1)
+        else:
+            _map_shards(client, where, current["campaign"], shards, threads_per_shard, retries)
+
+
+def _map_shards(client, where: str, campaign_id: str, shards: List[int], threads: int,
+                retries: int) -> None:
     from distributed import as_completed
-    campaign_id = status(where)["campaign"]
     futures = client.map(_run_shard_task, [where] * len(shards), shards,
-                         [threads_per_shard] * len(shards),
+                         [threads] * len(shards),
                          key=[f"prs-{campaign_id}-shard-{k}" for k in shards],
                          pure=False, retries=retries)
     try:
@@ -106,7 +127,6 @@ def run(dir_or_spec: PathLike, client=None, *, dir: Optional[PathLike] = None,
             future.result()  # raises the shard's error here
     finally:
         client.cancel(futures)
-    return status(where)
 
 
 def _run_shard_task(dir: str, shard: int, threads: int) -> int:

@@ -1,10 +1,12 @@
 // Campaigns from Python (docs/cluster.md): the same campaign directories, shard files, status and
-// merge as `prs campaign`, for probrobscene.campaign, which maps shards over a Dask cluster.
+// merge as `prs campaign` (test, sample and search campaigns), for probrobscene.campaign, which
+// maps shards over a Dask cluster.
 #include "campaign/campaign.h"
 
 #include <pybind11/stl.h>
 
 #include "bindings.h"
+#include "campaign/search_campaign.h"
 #include "campaign/slurm.h"
 #include "controllers/builtin.h"
 #include "output/line_writer.h"
@@ -34,9 +36,16 @@ harness::ControllerFactory ChooseFactory(const campaign::CampaignSpec& spec) {
 
 std::string Init(const std::string& dir, const std::string& path, const LoadOptions& load,
                  uint64_t count, uint64_t shard_size, const py::object& seed_arg,
-                 const std::string& controller, const std::string& exec, double timeout_s) {
+                 const std::string& controller, const std::string& exec, double timeout_s,
+                 const std::string& strategy, uint64_t batch) {
   campaign::CampaignSpec spec;
   spec.kind = controller.empty() && exec.empty() ? "sample" : "test";
+  if (!strategy.empty()) {
+    if (spec.kind == "sample") throw py::value_error("a search needs a controller or exec");
+    spec.kind = "search";
+    spec.strategy = strategy;
+    spec.batch = batch > 0 ? batch : static_cast<uint64_t>(search::DefaultBatch(count));
+  }
   spec.controller = controller;
   spec.exec = exec;
   spec.timeout_s = timeout_s;
@@ -62,7 +71,16 @@ std::string Init(const std::string& dir, const std::string& path, const LoadOpti
   spec.count = count;
   spec.shard_size = shard_size;
   spec.version = PRS_VERSION;
-  return CallCampaign([&] { return campaign::InitCampaign(dir, *program, spec).id; });
+  return CallCampaign([&] {
+    if (spec.kind == "search") {
+      try {
+        search::SearchPlanner check(*program, campaign::MakeSearchOptions(spec));
+      } catch (const search::NothingToSearch& error) {
+        throw py::value_error(error.what());
+      }
+    }
+    return campaign::InitCampaign(dir, *program, spec).id;
+  });
 }
 
 // Runs shard k with the GIL released (a Dask worker keeps answering its scheduler meanwhile).
@@ -72,7 +90,7 @@ void RunShard(const std::string& dir, uint64_t k, int threads) {
     const campaign::CampaignSpec spec = campaign::ReadCampaign(dir);
     const std::unique_ptr<lang::CompiledProgram> program = campaign::CompileCampaign(dir, spec);
     std::optional<harness::ControllerFactory> factory;
-    if (spec.kind == "test") factory = ChooseFactory(spec);
+    if (spec.kind != "sample") factory = ChooseFactory(spec);
     try {
       py::gil_scoped_release release;
       campaign::RunShard(dir, spec, *program, k, factory ? &*factory : nullptr, threads, nullptr);
@@ -88,7 +106,8 @@ py::dict Status(const std::string& dir) {
     const campaign::CampaignSpec spec = campaign::ReadCampaign(dir);
     const campaign::SlurmQueue queue = campaign::QuerySlurmQueue(dir, spec);
     const std::vector<campaign::ShardState> states = campaign::DescribeShards(dir, spec, queue);
-    constexpr const char* kNames[] = {"done", "queued", "running", "failed", "missing", "bad"};
+    constexpr const char* kNames[] = {"done",    "queued", "running", "failed",
+                                      "missing", "bad",    "waiting"};
     py::dict counts;
     for (const char* name : kNames) counts[name] = 0;
     py::list shards, to_run;
@@ -96,6 +115,7 @@ py::dict Status(const std::string& dir) {
       // Not done and not left to Slurm: what probrobscene.campaign.run runs.
       const auto task = queue.tasks.find(k);
       if (states[k].kind != campaign::ShardState::Kind::kDone &&
+          states[k].kind != campaign::ShardState::Kind::kWaiting &&
           (task == queue.tasks.end() || !task->second.active())) {
         to_run.append(k);
       }
@@ -119,6 +139,17 @@ py::dict Status(const std::string& dir) {
   });
 }
 
+// Search campaigns: plans the first generation that is not done (when the one before it is),
+// and returns whether the search is finished. Other campaigns: always "finished" planning.
+bool Plan(const std::string& dir) {
+  return CallCampaign([&] {
+    const campaign::CampaignSpec spec = campaign::ReadCampaign(dir);
+    if (spec.kind != "search") return true;
+    const std::unique_ptr<lang::CompiledProgram> program = campaign::CompileCampaign(dir, spec);
+    return campaign::PlanSearchStep(dir, spec, *program).finished;
+  });
+}
+
 py::dict Merge(const std::string& dir, const std::string& output, bool partial) {
   return CallCampaign([&] {
     const campaign::CampaignSpec spec = campaign::ReadCampaign(dir);
@@ -139,7 +170,8 @@ py::dict Merge(const std::string& dir, const std::string& output, bool partial) 
 void BindCampaign(py::module_& m) {
   m.def("campaign_init", &Init, py::arg("dir"), py::arg("path"), py::arg("options"),
         py::arg("count"), py::arg("shard_size"), py::arg("seed"), py::arg("controller"),
-        py::arg("exec"), py::arg("timeout_s"));
+        py::arg("exec"), py::arg("timeout_s"), py::arg("strategy"), py::arg("batch"));
+  m.def("campaign_plan", &Plan, py::arg("dir"));
   m.def("campaign_run_shard", &RunShard, py::arg("dir"), py::arg("shard"), py::arg("threads"));
   m.def("campaign_status", &Status, py::arg("dir"));
   m.def("campaign_merge", &Merge, py::arg("dir"), py::arg("output"), py::arg("partial"));

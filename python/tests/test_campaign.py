@@ -1,6 +1,6 @@
 """probrobscene.campaign on a real Dask LocalCluster (two worker processes): a merged campaign is
-one machine's run, shards done before are not run again, the CLI and Python share directories,
-and bad directories get clear errors."""
+one machine's run (test, sample and search campaigns), shards done before are not run again, the
+CLI and Python share directories, and bad directories get clear errors."""
 
 import json
 import os
@@ -69,6 +69,25 @@ def test_dask_scene_campaign_from_a_scenario_file_equals_prs_sample(client, prs_
     assert "5 of 5 done" in result.stdout, result.stdout
 
 
+def test_dask_search_campaign_runs_generation_after_generation_as_prs_search(client, prs_binary,
+                                                                            tmp_path):
+    camp = tmp_path / "search"
+    status = campaign.run(TABLE_CUBE, client, dir=camp, n=120, shard_size=15, seed=5,
+                          controller="planted-1-percent", search="ce", batch=40)
+    assert status["kind"] == "search"
+    assert status["counts"]["done"] == 9 and status["to_run"] == []
+    assert sorted(os.listdir(camp / "search")) == \
+        ["generation-0000.json", "generation-0001.json", "generation-0002.json"]
+    campaign.merge(camp, tmp_path / "merged.jsonl")
+    result = run_prs(prs_binary, "search", TABLE_CUBE, "--controller", "planted-1-percent",
+                     "--budget", "120", "--batch", "40", "-s", "5", "--strategy", "ce", "-q",
+                     "-o", str(tmp_path / "single.jsonl"))
+    assert result.returncode == 0, result.stderr
+    merged = records_without_times(tmp_path / "merged.jsonl")
+    assert merged == records_without_times(tmp_path / "single.jsonl")
+    assert [r["search"]["generation"] for r in merged] == [0] * 40 + [1] * 40 + [2] * 40
+
+
 def test_a_campaign_made_by_prs_runs_here_without_a_cluster(prs_binary, tmp_path):
     camp = tmp_path / "camp"
     result = run_prs(prs_binary, "campaign", "init", str(camp), TABLE_CUBE, "-n", "40",
@@ -76,7 +95,7 @@ def test_a_campaign_made_by_prs_runs_here_without_a_cluster(prs_binary, tmp_path
     assert result.returncode == 0, result.stderr
     status = campaign.run(camp)
     assert status["counts"] == {"done": 3, "queued": 0, "running": 0, "failed": 0,
-                                "missing": 0, "bad": 0}
+                                "missing": 0, "bad": 0, "waiting": 0}
     result = run_prs(prs_binary, "campaign", "merge", str(camp), "-o", str(tmp_path / "m.jsonl"))
     assert result.returncode == 0, result.stderr
     result = run_prs(prs_binary, "test", TABLE_CUBE, "--controller", "demo-reach", "-n", "40",
@@ -88,6 +107,10 @@ def test_a_campaign_made_by_prs_runs_here_without_a_cluster(prs_binary, tmp_path
 def test_bad_campaigns_and_arguments_are_clear_errors(tmp_path):
     with pytest.raises(ValueError, match="not a campaign directory: to make one"):
         campaign.run(tmp_path / "nothing.prs")
+    with pytest.raises(ValueError, match="unknown search strategy 'bo'"):
+        campaign.init(tmp_path / "c2", TABLE_CUBE, 10, controller="demo-reach", search="bo")
+    with pytest.raises(ValueError, match="needs a controller"):
+        campaign.init(tmp_path / "c3", TABLE_CUBE, 10, search="ce")
     with pytest.raises(ValueError, match="unknown controller 'tabel-cube'"):
         campaign.init(tmp_path / "c0", TABLE_CUBE, 10, controller="tabel-cube")
     with pytest.raises(prs.ScenarioError):

@@ -14,6 +14,7 @@
 #include <sstream>
 
 #include "campaign/files.h"
+#include "campaign/search_campaign.h"
 #include "output/line_writer.h"
 #include "output/scene_json.h"
 #include "sampling/batch.h"
@@ -41,7 +42,9 @@ nlohmann::json ToJson(const CampaignSpec& s) {
           {"exec", s.exec},
           {"timeout_s", s.timeout_s},
           {"spec_hash", s.spec_hash},
-          {"version", s.version}};
+          {"version", s.version},
+          {"strategy", s.strategy},
+          {"batch", s.batch}};
 }
 
 std::string SidecarPath(const std::string& dir, uint64_t k) {
@@ -64,8 +67,47 @@ void WriteFileAtomically(const std::string& path, const std::string& text) {
   writer.Commit();
 }
 
+// A search campaign's generations are cut into shards one by one: every generation but the
+// last holds `batch` episodes, so it has the same number of shards.
+namespace {
+uint64_t CeilDiv(uint64_t a, uint64_t b) { return (a + b - 1) / b; }
+}  // namespace
+
+uint64_t CampaignSpec::shards() const {
+  if (batch == 0) return CeilDiv(count, shard_size);
+  return (count / batch) * CeilDiv(batch, shard_size) + CeilDiv(count % batch, shard_size);
+}
+
+uint64_t CampaignSpec::generation(uint64_t k) const {
+  return batch == 0 ? 0 : k / CeilDiv(batch, shard_size);
+}
+
+uint64_t CampaignSpec::generations() const { return batch == 0 ? 1 : CeilDiv(count, batch); }
+
+uint64_t CampaignSpec::first(uint64_t k) const {
+  if (batch == 0) return k * shard_size;
+  const uint64_t per_generation = CeilDiv(batch, shard_size);
+  return (k / per_generation) * batch + (k % per_generation) * shard_size;
+}
+
 uint64_t CampaignSpec::size(uint64_t k) const {
-  return k + 1 < shards() ? shard_size : count - first(k);
+  if (batch == 0) return k + 1 < shards() ? shard_size : count - first(k);
+  const uint64_t g = generation(k);
+  const uint64_t generation_end = std::min(count, (g + 1) * batch);
+  return std::min(shard_size, generation_end - first(k));
+}
+
+std::vector<uint64_t> CampaignSpec::generation_shards(uint64_t g) const {
+  std::vector<uint64_t> shards_of_g;
+  if (batch == 0) {
+    for (uint64_t k = 0; k < shards(); ++k) shards_of_g.push_back(k);
+    return shards_of_g;
+  }
+  const uint64_t per_generation = CeilDiv(batch, shard_size);
+  for (uint64_t k = g * per_generation; k < shards() && generation(k) == g; ++k) {
+    shards_of_g.push_back(k);
+  }
+  return shards_of_g;
 }
 
 std::string ShardPath(const std::string& dir, uint64_t k) {
@@ -76,6 +118,9 @@ CampaignSpec InitCampaign(const std::string& dir, const lang::CompiledProgram& p
                           CampaignSpec spec) {
   if (spec.count == 0 || spec.shard_size == 0) {
     throw CampaignError("a campaign needs at least one scene (-n) and a shard size of at least 1");
+  }
+  if ((spec.kind == "search") != (spec.batch > 0)) {
+    throw CampaignError("a search campaign needs a generation size of at least 1 (and only it)");
   }
   std::error_code error;
   if (fs::exists(dir, error) && !fs::is_empty(dir, error)) {
@@ -94,14 +139,14 @@ CampaignSpec InitCampaign(const std::string& dir, const lang::CompiledProgram& p
                           " and " + path + "); rename one so the campaign can hold both");
     }
     WriteFileAtomically(fmt::format("{}/spec/{}", dir, name),
-                    std::string(program.sources.text(static_cast<lang::FileId>(f))));
+                        std::string(program.sources.text(static_cast<lang::FileId>(f))));
     if (f == 0) spec.main_file = "spec/" + name;
   }
   spec.spec_hash = search::CalcSpecHash(program);
   spec.id = fmt::format(
-      "{:016x}",
-      search::CalcFnv1a(spec.spec_hash + std::to_string(::getpid()) +
-            std::to_string(std::chrono::system_clock::now().time_since_epoch().count())));
+      "{:016x}", search::CalcFnv1a(
+                     spec.spec_hash + std::to_string(::getpid()) +
+                     std::to_string(std::chrono::system_clock::now().time_since_epoch().count())));
   WriteFileAtomically(dir + "/campaign.json", ToJson(spec).dump(2) + "\n");
   return spec;
 }
@@ -133,7 +178,10 @@ CampaignSpec ReadCampaign(const std::string& dir) {
     s.timeout_s = j.at("timeout_s");
     s.spec_hash = j.at("spec_hash");
     s.version = j.at("version");
-    if ((s.kind != "test" && s.kind != "sample") || s.count == 0 || s.shard_size == 0) {
+    s.strategy = j.value("strategy", "");
+    s.batch = j.value("batch", uint64_t{0});
+    if ((s.kind != "test" && s.kind != "sample" && s.kind != "search") || s.count == 0 ||
+        s.shard_size == 0 || (s.kind == "search") != (s.batch > 0)) {
       throw std::exception();
     }
     return s;
@@ -224,7 +272,10 @@ void RunShard(const std::string& dir, const CampaignSpec& spec,
   sample.max_attempts = spec.max_attempts;
   sample.run.mode = spec.naive ? lang::SamplingMode::kNaive : lang::SamplingMode::kRegion;
   std::vector<std::string> lines;
-  if (spec.kind == "test") {
+  if (spec.kind != "sample" && !factory) throw std::invalid_argument("RunShard: no controller");
+  if (spec.kind == "search") {
+    lines = RunSearchShard(dir, spec, program, k, *factory, threads, cancel);
+  } else if (spec.kind == "test") {
     harness::RunOptions run;
     run.sample = sample;
     run.seed = spec.seed;

@@ -21,10 +21,11 @@ namespace prs::campaign {
 
 /// DIR/campaign.json: everything a shard needs, written once by InitCampaign.
 struct CampaignSpec {
-  std::string id;                           // unique per init: ties shards to this campaign
-  std::string kind;                         // "test" (episode records) or "sample" (scene lines)
-  std::string main_file;                    // the scenario, relative to DIR ("spec/table_cube.prs")
-  std::vector<std::string> scenario_words;  // the FILE -I -p --naive given at init
+  std::string id;         // unique per init: ties shards to this campaign
+  std::string kind;       // "test" (episode records), "sample" (scene lines) or "search" (records
+                          // of a failure search, generation after generation: search_campaign.h)
+  std::string main_file;  // the scenario, relative to DIR ("spec/table_cube.prs")
+  std::vector<std::string> scenario_words;                  // the FILE -I -p --naive given at init
   std::vector<std::pair<std::string, std::string>> params;  // -p NAME=VALUE
   bool naive = false;
   int64_t max_attempts = 10'000;
@@ -36,11 +37,19 @@ struct CampaignSpec {
   double timeout_s = 60;
   std::string spec_hash;  // search::CalcSpecHash of the copied program
   std::string version;    // the prs that made it
+  // kind "search": the strategy ("ce", "anneal", "random") and the generation size; count is
+  // the budget. Shards never straddle generations: each generation is cut on its own.
+  std::string strategy;
+  uint64_t batch = 0;
 
-  uint64_t shards() const { return (count + shard_size - 1) / shard_size; }
-  /// The scenes of shard k: [first, first + size).
-  uint64_t first(uint64_t k) const { return k * shard_size; }
+  uint64_t shards() const;
+  /// The scenes (episodes) of shard k: [first, first + size).
+  uint64_t first(uint64_t k) const;
   uint64_t size(uint64_t k) const;
+  /// Search campaigns: the generation of shard k, and the shards of generation g.
+  uint64_t generation(uint64_t k) const;
+  uint64_t generations() const;
+  std::vector<uint64_t> generation_shards(uint64_t g) const;
 };
 
 /// Thrown with a message a user can act on (it names the file and what to do).

@@ -8,12 +8,14 @@
 #include <algorithm>
 #include <cctype>
 #include <cstdio>
+#include <cstdlib>
 #include <filesystem>
 #include <nlohmann/json.hpp>
 #include <set>
 #include <sstream>
 
 #include "campaign/files.h"
+#include "campaign/search_campaign.h"
 #include "harness/harness.h"
 
 namespace prs::campaign {
@@ -112,11 +114,31 @@ std::string FormatSlurmScript(const std::string& dir, const CampaignSpec& spec,
   return script;
 }
 
-std::string WriteSlurmScript(const std::string& dir, int number, const std::string& script) {
+std::string FormatNextStepScript(const std::string& dir, const CampaignSpec& spec, int number,
+                                 const std::string& job_id, const SlurmOptions& options) {
+  std::string script = fmt::format(
+      "#!/bin/bash\n"
+      "# prs campaign {} (search): plans and submits the next generation once job {} ends,\n"
+      "# written by prs campaign slurm.\n"
+      "#SBATCH --job-name={}-next\n"
+      "#SBATCH --dependency=afterany:{}\n"
+      "#SBATCH --kill-on-invalid-dep=yes\n"
+      "#SBATCH --output={}/logs/next-{}.out\n"
+      "#SBATCH --error={}/logs/next-{}.err\n"
+      "#SBATCH --cpus-per-task=1\n",
+      spec.id, job_id, SlurmJobName(spec), job_id, dir, number, dir, number);
+  if (!options.partition.empty()) script += "#SBATCH --partition=" + options.partition + "\n";
+  script += fmt::format("set -eu\nexec {} campaign resume {} --chained\n",
+                        harness::QuoteForShell(options.prs), harness::QuoteForShell(dir));
+  return script;
+}
+
+std::string WriteSlurmScript(const std::string& dir, int number, const std::string& script,
+                             const char* name) {
   std::error_code error;
   fs::create_directories(dir + "/logs", error);
   fs::create_directories(dir + "/slurm", error);
-  const std::string path = SubmissionPath(dir, number, "sh");
+  const std::string path = fmt::format("{}/slurm/{}-{}.sh", dir, name, number);
   WriteFileAtomically(path, script);
   return path;
 }
@@ -140,7 +162,9 @@ void WriteSubmission(const std::string& dir, const SlurmSubmission& s) {
                                  {"cpus_per_task", s.options.cpus_per_task},
                                  {"max_running", s.options.max_running},
                                  {"prs", s.options.prs},
-                                 {"extra", s.options.extra}};
+                                 {"extra", s.options.extra},
+                                 {"generation", s.generation},
+                                 {"next_job_id", s.next_job_id}};
   WriteFileAtomically(SubmissionPath(dir, s.number, "json"), record.dump() + "\n");
 }
 
@@ -164,6 +188,8 @@ std::vector<SlurmSubmission> ReadSubmissions(const std::string& dir) {
       s.options.max_running = j.value("max_running", 0);
       s.options.prs = j.value("prs", "");
       s.options.extra = j.value("extra", "");
+      s.generation = j.value("generation", int64_t{-1});
+      s.next_job_id = j.value("next_job_id", "");
       submissions.push_back(std::move(s));
     } catch (const nlohmann::json::exception&) {
       continue;  // a record edited by hand: the shards' own files still tell what is done
@@ -222,8 +248,11 @@ std::map<uint64_t, QueuedTask> ParseSqueueLines(const std::string& text,
 
 SlurmQueue QuerySlurmQueue(const std::string& dir, const CampaignSpec& spec) {
   SlurmQueue queue;
-  std::vector<std::string> job_ids;
-  for (const SlurmSubmission& s : ReadSubmissions(dir)) job_ids.push_back(s.job_id);
+  std::vector<std::string> job_ids, next_ids;
+  for (const SlurmSubmission& s : ReadSubmissions(dir)) {
+    job_ids.push_back(s.job_id);
+    if (!s.next_job_id.empty()) next_ids.push_back(s.next_job_id);
+  }
   if (job_ids.empty()) {
     queue.available = true;
     return queue;
@@ -235,14 +264,27 @@ SlurmQueue QuerySlurmQueue(const std::string& dir, const CampaignSpec& spec) {
   // --states=all also lists tasks that ended in the last MinJobAge seconds (300 by default),
   // with how they ended; --array lists every task of an array on its own line.
   const CommandResult result =
-      RunCommand("squeue --noheader --array --states=all --name=" + SlurmJobName(spec) +
-                 " --format='%F|%K|%T|%r'");
+      RunCommand("squeue --noheader --array --states=all --name=" + SlurmJobName(spec) + "," +
+                 SlurmJobName(spec) + "-next --format='%F|%K|%T|%r'");
   if (result.exit_code != 0) {
     queue.why_not = "squeue failed: " + Trim(result.output);
     return queue;
   }
   queue.available = true;
   queue.tasks = ParseSqueueLines(result.output, job_ids);
+  const char* self = std::getenv("SLURM_JOB_ID");
+  std::stringstream lines(result.output);
+  for (std::string line; std::getline(lines, line);) {
+    std::stringstream parts(Trim(line));
+    std::string id, index, state;
+    std::getline(parts, id, '|');
+    std::getline(parts, index, '|');
+    std::getline(parts, state, '|');
+    if (std::find(next_ids.begin(), next_ids.end(), id) != next_ids.end() &&
+        QueuedTask{id, state, ""}.active() && !(self && id == self)) {
+      queue.next_steps.push_back(id);
+    }
+  }
   return queue;
 }
 
@@ -254,8 +296,12 @@ std::vector<ShardState> DescribeShards(const std::string& dir, const CampaignSpe
   }
   using Kind = ShardState::Kind;
   std::vector<ShardState> states;
+  // Search campaigns: whether every shard of each generation so far is done.
+  std::vector<bool> generation_done(spec.generations(), true);
   for (uint64_t k = 0; k < spec.shards(); ++k) {
     const ShardStatus files = CheckShard(dir, spec, k);
+    const uint64_t g = spec.generation(k);
+    if (files.state != ShardStatus::State::kDone) generation_done[g] = false;
     ShardState state;
     if (files.state == ShardStatus::State::kDone) {
       state.kind = Kind::kDone;
@@ -284,6 +330,12 @@ std::vector<ShardState> DescribeShards(const std::string& dir, const CampaignSpe
       state = {Kind::kFailed, why};
     } else if (files.state == ShardStatus::State::kRunning) {
       state = {Kind::kRunning, "running or stopped (" + files.why + " exists)"};
+    } else if (spec.kind == "search" && g > 0 && !fs::exists(GenerationPlanPath(dir, g)) &&
+               (!generation_done[g - 1] || !queue.next_steps.empty())) {
+      state = {Kind::kWaiting, generation_done[g - 1]
+                                   ? fmt::format("Slurm job {} plans and submits generation {}",
+                                                 queue.next_steps.front(), g)
+                                   : ""};
     } else {
       state.kind = Kind::kMissing;
       if (submitted.count(k)) {

@@ -41,10 +41,21 @@ struct SlurmSubmission {
   std::string job_id;            // the array job id sbatch printed
   std::vector<uint64_t> shards;  // the array's indices
   SlurmOptions options;
+  int64_t generation = -1;  // search campaigns: the generation the shards belong to
+  std::string next_job_id;  // search campaigns: the job that plans and submits the next
 };
 
-/// Writes the script of submission `number` (DIR/slurm/submit-N.sh) atomically; returns its path.
-std::string WriteSlurmScript(const std::string& dir, int number, const std::string& script);
+/// A search campaign's next step on Slurm: a job that waits for the array `job_id` to end
+/// (`--dependency=afterany`) and then runs `prs campaign resume DIR --chained`, which plans the
+/// next generation and submits it with its own next step (DIR/slurm/next-N.sh, logs in
+/// DIR/logs/next-N.out and .err).
+std::string FormatNextStepScript(const std::string& dir, const CampaignSpec& spec, int number,
+                                 const std::string& job_id, const SlurmOptions& options);
+
+/// Writes the script of submission `number` (DIR/slurm/NAME-N.sh: "submit" for a job array,
+/// "next" for a search's next step) atomically and creates DIR/logs; returns its path.
+std::string WriteSlurmScript(const std::string& dir, int number, const std::string& script,
+                             const char* name = "submit");
 
 /// The next free N of DIR/slurm/submit-N.sh.
 int FindNextSubmissionNumber(const std::string& dir);
@@ -73,6 +84,9 @@ struct SlurmQueue {
   bool available = false;
   std::string why_not;
   std::map<uint64_t, QueuedTask> tasks;
+  /// Search campaigns: the recorded next-step jobs still queued or running (never the job that
+  /// asks, $SLURM_JOB_ID).
+  std::vector<std::string> next_steps;
 };
 
 /// Parses `squeue --noheader --array --states=all --format=%F|%K|%T|%r` lines (%F: the array's
@@ -81,7 +95,8 @@ struct SlurmQueue {
 std::map<uint64_t, QueuedTask> ParseSqueueLines(const std::string& text,
                                                 const std::vector<std::string>& job_ids);
 
-/// Asks squeue about the campaign's recorded submissions (none recorded: available, empty).
+/// Asks squeue about the campaign's recorded submissions and next steps (none recorded:
+/// available, empty).
 SlurmQueue QuerySlurmQueue(const std::string& dir, const CampaignSpec& spec);
 
 /// A shard's state from its files and the queue together.
@@ -93,6 +108,8 @@ struct ShardState {
     kFailed,   // submitted, no longer in the queue, not written: cancelled, killed, timed out
     kMissing,  // never submitted (as far as the records show), not written
     kBad,      // a written file that cannot be trusted (CheckShard's reason)
+    kWaiting,  // a search campaign's shard whose generation cannot be planned yet (the one
+               // before it is not done)
   } kind = Kind::kMissing;
   std::string why;  // what the files, squeue and the task's log say
 };
@@ -101,7 +118,8 @@ struct ShardState {
 std::vector<ShardState> DescribeShards(const std::string& dir, const CampaignSpec& spec,
                                        const SlurmQueue& queue);
 
-/// The shards `prs campaign resume` submits again: neither done nor queued nor running.
+/// The shards `prs campaign resume` submits again: neither done nor queued nor running nor
+/// waiting.
 std::vector<uint64_t> FindShardsToResubmit(const std::vector<ShardState>& states);
 
 }  // namespace prs::campaign

@@ -12,6 +12,7 @@
 #include <set>
 
 #include "campaign/campaign.h"
+#include "campaign/search_campaign.h"
 #include "campaign/slurm.h"
 #include "cli/commands.h"
 #include "cli/common.h"
@@ -29,6 +30,8 @@ struct CampaignArgs {
   ControllerArgs controller;
   int64_t count = 0;
   int64_t shard_size = 1000;
+  std::string strategy;  // --search: a search campaign
+  int64_t batch = 0;     // its generation size (0: as prs search picks)
   // every subcommand
   std::string dir;
   // run-shard
@@ -40,7 +43,12 @@ struct CampaignArgs {
   campaign::SlurmOptions slurm;
   std::set<std::string> given;  // the slurm/resume flags given on the command line
   bool print_only = false;
+  bool chained = false;  // resume run by a search campaign's next-step job
 };
+
+// How many times a search generation is submitted by next-step jobs before they give up and
+// leave it to the user (a shard that fails every time would otherwise loop forever).
+constexpr int kMaxChainedSubmissions = 3;
 
 int RunInit(const CampaignArgs& args) {
   auto program = CompileScenario(args.scenario);
@@ -48,7 +56,20 @@ int RunInit(const CampaignArgs& args) {
   campaign::CampaignSpec spec;
   spec.kind =
       args.controller.controller.empty() && args.controller.exec.empty() ? "sample" : "test";
-  if (spec.kind == "test") {
+  if (!args.strategy.empty()) {
+    if (spec.kind != "test") {
+      PrintError("--search needs a controller (--controller NAME or --exec CMD)");
+      return kExitUsage;
+    }
+    spec.kind = "search";
+    spec.strategy = args.strategy;
+    spec.batch =
+        static_cast<uint64_t>(args.batch > 0 ? args.batch : search::DefaultBatch(args.count));
+  } else if (args.batch > 0) {
+    PrintError("--batch is the generation size of a search campaign: give --search too");
+    return kExitUsage;
+  }
+  if (spec.kind != "sample") {
     InterruptWatch interrupt;
     if (!ChooseController(args.controller, interrupt.flag())) return kExitUsage;
   }
@@ -64,7 +85,12 @@ int RunInit(const CampaignArgs& args) {
   spec.timeout_s = args.controller.timeout_s;
   spec.version = PRS_VERSION;
   try {
+    if (spec.kind == "search")
+      search::SearchPlanner check(*program, campaign::MakeSearchOptions(spec));
     spec = campaign::InitCampaign(args.dir, *program, spec);
+  } catch (const search::NothingToSearch& error) {
+    PrintError(error.what());
+    return kExitScenarioError;
   } catch (const campaign::CampaignError& error) {
     PrintError(error.what());
     return kExitScenarioError;
@@ -72,9 +98,15 @@ int RunInit(const CampaignArgs& args) {
   PrintNote(fmt::format(
       "campaign {} in {}: {} of {} in {} of up to {}; run each with prs "
       "campaign run-shard {} K (K = 0..{})",
-      spec.id, args.dir, FormatCount(spec.count, spec.kind == "test" ? "episode" : "scene"),
+      spec.id, args.dir, FormatCount(spec.count, spec.kind == "sample" ? "scene" : "episode"),
       args.scenario.file, FormatCount(spec.shards(), "shard"), spec.shard_size, args.dir,
       spec.shards() - 1));
+  if (spec.kind == "search") {
+    PrintNote(fmt::format(
+        "a {} search in {} of {}: generation g's shards can run once generation g - 1's are "
+        "done (prs campaign slurm chains them)",
+        spec.strategy, FormatCount(spec.generations(), "generation"), spec.batch));
+  }
   return kExitSuccess;
 }
 
@@ -85,7 +117,7 @@ int RunShardCommand(const CampaignArgs& args) {
     const campaign::CampaignSpec spec = campaign::ReadCampaign(args.dir);
     program = campaign::CompileCampaign(args.dir, spec);
     std::optional<harness::ControllerFactory> factory;
-    if (spec.kind == "test") {
+    if (spec.kind != "sample") {
       factory = ChooseController({spec.controller, spec.exec, spec.timeout_s}, interrupt.flag());
       if (!factory) return kExitUsage;
     }
@@ -130,8 +162,9 @@ int RunStatus(const CampaignArgs& args) {
     const std::vector<campaign::ShardState> states =
         campaign::DescribeShards(args.dir, spec, queue);
     using Kind = campaign::ShardState::Kind;
-    constexpr const char* kNames[] = {"done", "queued", "running", "failed", "missing", "bad"};
-    int64_t counts[6] = {};
+    constexpr const char* kNames[] = {"done",    "queued", "running", "failed",
+                                      "missing", "bad",    "waiting"};
+    int64_t counts[7] = {};
     for (uint64_t k = 0; k < states.size(); ++k) {
       const int kind = static_cast<int>(states[k].kind);
       if (++counts[kind] <= 20 && states[k].kind != Kind::kDone &&
@@ -144,13 +177,30 @@ int RunStatus(const CampaignArgs& args) {
         std::cout << fmt::format("... and {} more {}\n", counts[kind] - 20, kNames[kind]);
     }
     std::cout << fmt::format(
-        "{}: {} of {} done, {} queued, {} running, {} failed, {} missing, {} bad\n", args.dir,
+        "{}: {} of {} done, {} queued, {} running, {} failed, {} missing, {} bad", args.dir,
         counts[0], spec.shards(), counts[1], counts[2], counts[3], counts[4], counts[5]);
+    if (spec.kind == "search") {
+      // The generation under way: the first one with a shard not done.
+      uint64_t g = 0;
+      for (; g < spec.generations(); ++g) {
+        const std::vector<uint64_t> shards = spec.generation_shards(g);
+        if (!std::all_of(shards.begin(), shards.end(),
+                         [&](uint64_t k) { return states[k].kind == Kind::kDone; })) {
+          break;
+        }
+      }
+      std::cout << fmt::format(", {} waiting; search generation {} of {}", counts[6],
+                               std::min(g + 1, spec.generations()), spec.generations());
+    }
+    std::cout << "\n";
     if (!queue.available) PrintNote("the Slurm queue was not asked: " + queue.why_not);
     const size_t to_submit = campaign::FindShardsToResubmit(states).size();
     if (to_submit > 0 && counts[0] + counts[1] + counts[2] < static_cast<int64_t>(spec.shards())) {
-      PrintNote(fmt::format("prs campaign resume {} submits the {} again (or run-shard them)",
-                            args.dir, FormatCount(static_cast<int64_t>(to_submit), "shard")));
+      const bool submitted = !campaign::ReadSubmissions(args.dir).empty();
+      PrintNote(fmt::format("prs campaign {} {} submits the {}{} (or run-shard them)",
+                            submitted ? "resume" : "slurm", args.dir,
+                            FormatCount(static_cast<int64_t>(to_submit), "shard"),
+                            submitted ? " again" : ""));
     }
     return kExitSuccess;
   });
@@ -164,7 +214,7 @@ int RunMerge(const CampaignArgs& args) {
     output::LineWriter out(args.output);
     for (const std::string& line : lines) out.AddLine(line);
     out.Commit();
-    if (spec.kind == "test") {
+    if (spec.kind != "sample") {
       std::vector<harness::EpisodeRecord> records;
       for (const std::string& line : lines) {
         harness::EpisodeRecord r;
@@ -175,8 +225,8 @@ int RunMerge(const CampaignArgs& args) {
       std::cout << FormatOutcomeTable(records) << std::flush;
     }
     PrintNote(fmt::format(
-        "{} merged into {}{}", FormatCount(lines.size(), spec.kind == "test" ? "record" : "scene"),
-        args.output,
+        "{} merged into {}{}",
+        FormatCount(lines.size(), spec.kind == "sample" ? "scene" : "record"), args.output,
         skipped.empty() ? "" : fmt::format(" ({} skipped)", FormatCount(skipped.size(), "shard"))));
     return kExitSuccess;
   });
@@ -208,14 +258,54 @@ int RunSlurm(CampaignArgs args, bool resume) {
       keep("--max-running", args.slurm.max_running, last.max_running);
       keep("--extra", args.slurm.extra, last.extra);
     }
+    int64_t generation = -1;  // search campaigns: the generation to submit
+    std::vector<uint64_t> generation_shards;
+    if (spec.kind == "search") {
+      const campaign::SearchStep step =
+          campaign::PlanSearchStep(dir, spec, *campaign::CompileCampaign(dir, spec));
+      if (step.finished) {
+        PrintNote("the search is complete: every generation is done (prs campaign merge " +
+                  args.dir + " -o OUT)");
+        return kExitSuccess;
+      }
+      generation = static_cast<int64_t>(step.generation);
+      generation_shards = spec.generation_shards(step.generation);
+      const auto same_generation = std::count_if(
+          earlier.begin(), earlier.end(),
+          [&](const campaign::SlurmSubmission& s) { return s.generation == generation; });
+      if (args.chained && same_generation >= kMaxChainedSubmissions) {
+        PrintError(fmt::format(
+            "generation {} was submitted {} times and its shards {} are still not done; "
+            "see prs campaign status {} and the logs, then prs campaign resume {}",
+            generation, same_generation, fmt::join(step.unfinished, ", "), args.dir, args.dir));
+        return kExitScenarioError;
+      }
+    }
     const campaign::SlurmQueue queue = campaign::QuerySlurmQueue(dir, spec);
     if (!queue.available && !earlier.empty()) {
       PrintNote("warning: the Slurm queue was not asked (" + queue.why_not +
                 "): shards still queued or running are submitted again");
     }
+    if (!queue.next_steps.empty()) {
+      PrintNote(
+          fmt::format("Slurm job {} (this search's next step) plans and submits what follows when "
+                      "generation {}'s tasks end; nothing to do (scancel it first to take over)",
+                      queue.next_steps.front(), generation));
+      return kExitSuccess;
+    }
     const std::vector<uint64_t> shards =
         campaign::FindShardsToResubmit(campaign::DescribeShards(dir, spec, queue));
-    if (shards.empty()) {
+    // A search's generation whose tasks are all queued or running still needs a next step.
+    std::vector<std::string> active_jobs;
+    for (uint64_t k : generation_shards) {
+      const auto task = queue.tasks.find(k);
+      if (task != queue.tasks.end() && task->second.active() &&
+          std::find(active_jobs.begin(), active_jobs.end(), task->second.job_id) ==
+              active_jobs.end()) {
+        active_jobs.push_back(task->second.job_id);
+      }
+    }
+    if (shards.empty() && (active_jobs.empty() || args.print_only)) {
       PrintNote("no shard to submit: each is done, queued or running (prs campaign status " +
                 args.dir + ")");
       return kExitSuccess;
@@ -224,20 +314,47 @@ int RunSlurm(CampaignArgs args, bool resume) {
     args.slurm.prs = fs::read_symlink("/proc/self/exe", error).string();
     if (error) args.slurm.prs = "prs";
     const int number = campaign::FindNextSubmissionNumber(dir);
-    const std::string text = campaign::FormatSlurmScript(dir, spec, shards, args.slurm);
-    const std::string script = campaign::WriteSlurmScript(dir, number, text);
     const std::string tasks = FormatCount(static_cast<int64_t>(shards.size()), "array task");
-    if (args.print_only) {
-      std::cout << text << std::flush;
-      PrintNote(fmt::format("{} written to {} (not submitted: --print)", tasks, script));
-      return kExitSuccess;
+    std::string script;
+    if (!shards.empty()) {
+      const std::string text = campaign::FormatSlurmScript(dir, spec, shards, args.slurm);
+      script = campaign::WriteSlurmScript(dir, number, text);
+      if (args.print_only) {
+        std::cout << text << std::flush;
+        PrintNote(fmt::format("{} written to {} (not submitted: --print)", tasks, script));
+        return kExitSuccess;
+      }
     }
     try {
-      const std::string job_id = campaign::SubmitToSlurm(script, args.slurm.extra);
-      campaign::WriteSubmission(dir, {number, job_id, shards, args.slurm});
-      std::cout << job_id << "\n" << std::flush;
-      PrintNote(fmt::format("submitted Slurm job {} ({}); follow it with prs campaign status {}",
-                            job_id, tasks, args.dir));
+      campaign::SlurmSubmission submission{number, "", shards, args.slurm, generation, ""};
+      if (!shards.empty()) {
+        submission.job_id = campaign::SubmitToSlurm(script, args.slurm.extra);
+        active_jobs.push_back(submission.job_id);
+      }
+      // A search's next generation is planned from this one's records: a job that waits for
+      // this generation's arrays plans and submits it, with its own next step, up to the last.
+      if (generation >= 0 && static_cast<uint64_t>(generation) + 1 < spec.generations()) {
+        const std::string next = campaign::WriteSlurmScript(
+            dir, number,
+            campaign::FormatNextStepScript(
+                dir, spec, number, fmt::format("{}", fmt::join(active_jobs, ":")), args.slurm),
+            "next");
+        submission.next_job_id = campaign::SubmitToSlurm(next, args.slurm.extra);
+      }
+      campaign::WriteSubmission(dir, submission);
+      if (!submission.job_id.empty()) std::cout << submission.job_id << "\n" << std::flush;
+      PrintNote(fmt::format(
+          "submitted {}{}; follow it with prs campaign status {}",
+          submission.job_id.empty()
+              ? std::string("no shard (each is queued or running)")
+              : fmt::format(
+                    "Slurm job {} ({}{})", submission.job_id, tasks,
+                    generation >= 0 ? fmt::format(" of search generation {}", generation) : ""),
+          submission.next_job_id.empty()
+              ? ""
+              : fmt::format(" and job {}, which submits the next generation when it ends",
+                            submission.next_job_id),
+          args.dir));
       return kExitSuccess;
     } catch (const campaign::CampaignError& error) {
       PrintError(error.what());
@@ -263,6 +380,15 @@ CommandRunner ConfigureCampaignCommand(CLI::App& command) {
       ->type_name("B")
       ->check(IntegerAtLeast(1))
       ->capture_default_str();
+  init->add_option("--search", args->strategy,
+                   "a failure search of N episodes in generations, each one job array "
+                   "(strategies: " +
+                       fmt::format("{}", fmt::join(search::StrategyNames(), ", ")) + ")")
+      ->type_name("STRATEGY")
+      ->check(CLI::IsMember(search::StrategyNames()));
+  init->add_option("--batch", args->batch, "a search's generation size (default as prs search)")
+      ->type_name("B")
+      ->check(IntegerAtLeast(1));
   AddSamplingOptions(*init, args->sampling);
   CLI::App* run = command.add_subcommand("run-shard", "run one shard and write it atomically");
   run->add_option("DIR", args->dir, "the campaign directory")->required();
@@ -312,6 +438,8 @@ CommandRunner ConfigureCampaignCommand(CLI::App& command) {
         ->each(note("--extra"));
     sub->add_flag("--print", args->print_only, "write and print the script, do not submit it");
   }
+  // Given by a search campaign's next-step job (FormatNextStepScript), not by people.
+  resume->add_flag("--chained", args->chained, "")->group("");
   return [args, init, run, status, slurm, resume] {
     if (init->parsed()) return RunInit(*args);
     if (run->parsed()) return RunShardCommand(*args);

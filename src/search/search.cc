@@ -39,12 +39,29 @@ class ProposalPoints : public sampling::AttemptPoints {
  public:
   enum class Mode { kUniform, kSobol, kGaussian, kChain, kGiven };
 
-  ProposalPoints(Mode mode, int dimension, uint64_t first_index, const std::vector<double>& mean,
-                 const std::vector<double>& std)
-      : mode_(mode), dimension_(dimension), first_index_(first_index) {
-    if (mode == Mode::kSobol) design_ = std::make_unique<Design>(DesignKind::kSobol, dimension);
-    if (mode == Mode::kGaussian)
-      gaussian_ = std::make_unique<GaussianPoints>(mean, std, kUniformShare);
+  explicit ProposalPoints(const GenerationPlan& plan)
+      : centres(plan.centres),
+        step(plan.step),
+        mode_(ParseMode(plan.mode)),
+        dimension_(plan.dimension),
+        first_index_(plan.start) {
+    if (mode_ == Mode::kSobol) design_ = std::make_unique<Design>(DesignKind::kSobol, dimension_);
+    if (mode_ == Mode::kGaussian) {
+      gaussian_ = std::make_unique<GaussianPoints>(plan.mean, plan.std, kUniformShare);
+    }
+    if ((mode_ == Mode::kChain || mode_ == Mode::kGiven) &&
+        static_cast<int64_t>(centres.size()) < plan.count) {
+      throw std::invalid_argument("a generation plan has fewer centres than episodes");
+    }
+  }
+
+  static Mode ParseMode(const std::string& name) {
+    if (name == "sobol") return Mode::kSobol;
+    if (name == "gaussian") return Mode::kGaussian;
+    if (name == "chain") return Mode::kChain;
+    if (name == "given") return Mode::kGiven;
+    if (name == "uniform") return Mode::kUniform;
+    throw std::invalid_argument("unknown proposal mode '" + name + "'");
   }
 
   int dimension() const override { return dimension_; }
@@ -85,7 +102,7 @@ class ProposalPoints : public sampling::AttemptPoints {
     return true;
   }
 
-  std::vector<std::vector<double>> centres;  // kChain, kGiven: per episode slot
+  std::vector<std::vector<double>> centres;  // kChain, kGiven: per episode of the generation
   double step = kFirstStep;                  // kChain
 
  private:
@@ -251,8 +268,19 @@ int64_t DefaultBatch(int64_t budget) {
   return std::min(budget, std::clamp<int64_t>(budget / 50, 20, 200));
 }
 
-SearchSummary RunSearch(const lang::CompiledProgram& program,
-                        const harness::ControllerFactory& factory, const SearchOptions& options) {
+struct SearchPlanner::State {
+  SearchOptions options;
+  int64_t batch = 0;
+  int dimension = 0;
+  std::vector<double> mean, std;  // the cross-entropy proposal
+  AnnealState anneal;
+  SearchSummary summary;
+  int64_t done = 0;  // episodes planned and added
+  bool planned = false;  // Next() was called and Add() not yet
+};
+
+SearchPlanner::SearchPlanner(const lang::CompiledProgram& program, const SearchOptions& options)
+    : state_(std::make_unique<State>()) {
   if (options.budget < 1) {
     throw std::invalid_argument("the search budget must be at least 1 episode, got " +
                                 std::to_string(options.budget));
@@ -265,81 +293,184 @@ SearchSummary RunSearch(const lang::CompiledProgram& program,
   if (options.strategy == Strategy::kExternal && !options.propose) {
     throw std::invalid_argument("the external strategy needs a proposer");
   }
-  SearchSummary summary;
-  summary.batch = batch;
-  summary.coordinates = sampling::DescribeCoordinates(program, options.run.sample);
-  const int d = static_cast<int>(summary.coordinates.size());
-  if (d == 0) {
+  State& s = *state_;
+  s.options = options;
+  s.batch = batch;
+  s.summary.batch = batch;
+  s.summary.coordinates = sampling::DescribeCoordinates(program, options.run.sample);
+  s.dimension = static_cast<int>(s.summary.coordinates.size());
+  if (s.dimension == 0) {
     throw NothingToSearch(
         "this program draws nothing at random: every scene is the same, so "
         "there is nothing to search");
   }
-  const uint64_t seed = options.run.seed;
-  const std::string spec_hash = CalcSpecHash(program);
-  std::vector<double> mean(d, 0.5), std(d, 1.0);  // wide: about uniform at first
-  AnnealState anneal;
+  s.mean.assign(s.dimension, 0.5);  // wide: about uniform at first
+  s.std.assign(s.dimension, 1.0);
+}
 
-  int64_t done = 0;
-  for (int generation = 0; done < options.budget; ++generation) {
-    const int64_t count = std::min(batch, options.budget - done);
-    using Mode = ProposalPoints::Mode;
-    Mode mode = Mode::kUniform;
-    if (options.strategy == Strategy::kExternal) {
-      mode = Mode::kGiven;
-    } else if (options.strategy != Strategy::kRandom) {
-      mode = generation == 0                               ? Mode::kSobol
-             : options.strategy == Strategy::kCrossEntropy ? Mode::kGaussian
-                                                           : Mode::kChain;
-    }
-    ProposalPoints points(mode, d, static_cast<uint64_t>(done), mean, std);
-    points.centres = anneal.centres;
-    points.step = anneal.step;
-    if (mode == Mode::kChain) points.centres.resize(count, std::vector<double>(d, 0.5));
-    if (mode == Mode::kGiven) {
-      points.centres = options.propose(summary.records, count, d, generation);
-      CheckProposal(points.centres, count, d);
-    }
+SearchPlanner::~SearchPlanner() = default;
 
-    harness::RunOptions run = options.run;
-    run.sample.points = &points;
-    run.spec_hash = spec_hash;
-    run.start = static_cast<uint64_t>(done);
-    run.count = count;
-    const nlohmann::json tag = {{"strategy", options.strategy == Strategy::kExternal
-                                                 ? options.external_name
-                                                 : std::string(StrategyName(options.strategy))},
-                                {"generation", generation}};
-    run.on_record = [&](const harness::EpisodeRecord& record) {
-      harness::EpisodeRecord tagged = record;
-      tagged.search = tag;
-      if (options.on_record) options.on_record(tagged);
-    };
-    harness::RunSummary ran = harness::RunEpisodes(program, factory, run);
-    summary.threads = ran.threads;
-    for (harness::EpisodeRecord& record : ran.records) {
-      record.search = tag;
-      if (record.result.outcome != "success") {
-        ++summary.failures;
-        if (summary.first_failure < 0) {
-          summary.first_failure = static_cast<int64_t>(record.index) + 1;
-        }
+bool SearchPlanner::done() const { return state_->done >= state_->options.budget; }
+
+GenerationPlan SearchPlanner::Next() {
+  State& s = *state_;
+  const Strategy strategy = s.options.strategy;
+  GenerationPlan plan;
+  plan.generation = s.summary.generations;
+  plan.start = static_cast<uint64_t>(s.done);
+  plan.count = std::min(s.batch, s.options.budget - s.done);
+  plan.dimension = s.dimension;
+  plan.strategy =
+      strategy == Strategy::kExternal ? s.options.external_name : StrategyName(strategy);
+  plan.mode = "uniform";
+  if (strategy == Strategy::kExternal) {
+    plan.mode = "given";
+    plan.centres = s.options.propose(s.summary.records, plan.count, s.dimension, plan.generation);
+    CheckProposal(plan.centres, plan.count, s.dimension);
+  } else if (strategy != Strategy::kRandom) {
+    plan.mode = plan.generation == 0                ? "sobol"
+                : strategy == Strategy::kCrossEntropy ? "gaussian"
+                                                      : "chain";
+  }
+  if (plan.mode == "gaussian") {
+    plan.mean = s.mean;
+    plan.std = s.std;
+  }
+  if (plan.mode == "chain") {
+    plan.centres = s.anneal.centres;
+    plan.centres.resize(plan.count, std::vector<double>(s.dimension, 0.5));
+    plan.step = s.anneal.step;
+  }
+  s.planned = true;
+  return plan;
+}
+
+void SearchPlanner::Add(std::vector<harness::EpisodeRecord> records) {
+  State& s = *state_;
+  if (!s.planned) throw std::logic_error("SearchPlanner::Add without Next");
+  s.planned = false;
+  for (const harness::EpisodeRecord& record : records) {
+    if (record.result.outcome != "success") {
+      ++s.summary.failures;
+      if (s.summary.first_failure < 0) {
+        s.summary.first_failure = static_cast<int64_t>(record.index) + 1;
       }
     }
-
-    if (options.strategy == Strategy::kCrossEntropy) {
-      UpdateCrossEntropy(BestSoFar(summary.records, ran.records), d, &mean, &std);
-    } else if (options.strategy == Strategy::kAnneal) {
-      anneal.Update(ran.records, seed, generation, batch, d);
-    }
-    for (auto& record : ran.records) summary.records.push_back(std::move(record));
-    done += count;
-    summary.generations = generation + 1;
   }
-  if (options.strategy == Strategy::kCrossEntropy) {
-    summary.proposal_mean = mean;
-    summary.proposal_std = std;
+  const int generation = s.summary.generations;
+  if (s.options.strategy == Strategy::kCrossEntropy) {
+    UpdateCrossEntropy(BestSoFar(s.summary.records, records), s.dimension, &s.mean, &s.std);
+  } else if (s.options.strategy == Strategy::kAnneal) {
+    s.anneal.Update(records, s.options.run.seed, generation, s.batch, s.dimension);
+  }
+  s.done += static_cast<int64_t>(records.size());
+  for (auto& record : records) s.summary.records.push_back(std::move(record));
+  s.summary.generations = generation + 1;
+}
+
+const SearchSummary& SearchPlanner::summary() const { return state_->summary; }
+
+SearchSummary SearchPlanner::TakeSummary() {
+  SearchSummary summary = std::move(state_->summary);
+  if (state_->options.strategy == Strategy::kCrossEntropy) {
+    summary.proposal_mean = state_->mean;
+    summary.proposal_std = state_->std;
   }
   return summary;
+}
+
+harness::RunSummary RunGeneration(const lang::CompiledProgram& program,
+                                  const harness::ControllerFactory& factory,
+                                  const GenerationPlan& plan, harness::RunOptions run,
+                                  uint64_t first, int64_t count) {
+  if (first < plan.start || count < 0 ||
+      first + static_cast<uint64_t>(count) > plan.start + static_cast<uint64_t>(plan.count)) {
+    throw std::invalid_argument("episodes outside the generation's plan");
+  }
+  const ProposalPoints points(plan);
+  run.sample.points = &points;
+  run.spec_hash = CalcSpecHash(program);
+  run.start = first;
+  run.count = count;
+  const nlohmann::json tag = {{"strategy", plan.strategy}, {"generation", plan.generation}};
+  const auto on_record = run.on_record;
+  run.on_record = [&](const harness::EpisodeRecord& record) {
+    if (!on_record) return;
+    harness::EpisodeRecord tagged = record;
+    tagged.search = tag;
+    on_record(tagged);
+  };
+  harness::RunSummary ran = harness::RunEpisodes(program, factory, run);
+  for (harness::EpisodeRecord& record : ran.records) record.search = tag;
+  return ran;
+}
+
+SearchSummary RunSearch(const lang::CompiledProgram& program,
+                        const harness::ControllerFactory& factory, const SearchOptions& options) {
+  SearchPlanner planner(program, options);
+  harness::RunOptions run = options.run;
+  run.on_record = options.on_record;
+  int threads = 1;
+  while (!planner.done()) {
+    const GenerationPlan plan = planner.Next();
+    harness::RunSummary ran = RunGeneration(program, factory, plan, run, plan.start, plan.count);
+    threads = ran.threads;
+    planner.Add(std::move(ran.records));
+  }
+  SearchSummary summary = planner.TakeSummary();
+  summary.threads = threads;
+  return summary;
+}
+
+nlohmann::json PlanToJson(const GenerationPlan& plan) {
+  nlohmann::json json = {{"generation", plan.generation}, {"start", plan.start},
+                         {"count", plan.count},           {"dimension", plan.dimension},
+                         {"mode", plan.mode},             {"strategy", plan.strategy}};
+  if (!plan.mean.empty()) json["mean"] = plan.mean;
+  if (!plan.std.empty()) json["std"] = plan.std;
+  if (!plan.centres.empty()) json["centres"] = plan.centres;
+  if (plan.mode == "chain") json["step"] = plan.step;
+  return json;
+}
+
+GenerationPlan PlanFromJson(const nlohmann::json& json) {
+  try {
+    GenerationPlan plan;
+    plan.generation = json.at("generation").get<int>();
+    plan.start = json.at("start").get<uint64_t>();
+    plan.count = json.at("count").get<int64_t>();
+    plan.dimension = json.at("dimension").get<int>();
+    plan.mode = json.at("mode").get<std::string>();
+    plan.strategy = json.at("strategy").get<std::string>();
+    plan.mean = json.value("mean", std::vector<double>{});
+    plan.std = json.value("std", std::vector<double>{});
+    plan.centres = json.value("centres", std::vector<std::vector<double>>{});
+    plan.step = json.value("step", 0.0);
+    ProposalPoints check(plan);  // throws for an unknown mode or missing centres
+    if (plan.count < 0 || plan.dimension < 1 ||
+        (plan.mode == "gaussian" && (static_cast<int>(plan.mean.size()) != plan.dimension ||
+                                     static_cast<int>(plan.std.size()) != plan.dimension))) {
+      throw std::invalid_argument("inconsistent sizes");
+    }
+    return plan;
+  } catch (const std::exception& error) {
+    throw std::runtime_error(std::string("not a generation plan: ") + error.what());
+  }
+}
+
+bool ParseRecordForSearch(const std::string& line, harness::EpisodeRecord* record) {
+  const auto json = nlohmann::json::parse(line, nullptr, false);
+  if (!json.is_object()) return false;
+  try {
+    record->index = json.at("index").get<uint64_t>();
+    record->result.outcome = json.at("outcome").get<std::string>();
+    record->result.score.reset();
+    if (json.contains("score")) record->result.score = json.at("score").get<double>();
+    record->coordinates = json.value("coordinates", std::vector<double>{});
+    return true;
+  } catch (const nlohmann::json::exception&) {
+    return false;
+  }
 }
 
 }  // namespace prs::search

@@ -6,6 +6,8 @@
 
 #include <cstdint>
 #include <functional>
+#include <memory>
+#include <nlohmann/json.hpp>
 #include <stdexcept>
 #include <string>
 #include <vector>
@@ -80,6 +82,59 @@ struct SearchSummary {
 
 /// The generation size SearchOptions::batch = 0 stands for.
 int64_t DefaultBatch(int64_t budget);
+
+/// One generation of a search: its episodes and where their points come from. A pure function
+/// of the program, the options and the earlier generations' records, and plain data, so that
+/// its episodes can run anywhere in any pieces (a campaign's shards, docs/cluster.md) and give
+/// the records one machine's search gives.
+struct GenerationPlan {
+  int generation = 0;
+  uint64_t start = 0;  // the first episode's index (= episodes in the earlier generations)
+  int64_t count = 0;
+  int dimension = 0;
+  std::string mode;  // "uniform", "sobol", "gaussian" (mean, std), "chain" (centres, step),
+                     // "given" (centres)
+  std::vector<double> mean, std;
+  std::vector<std::vector<double>> centres;
+  double step = 0;
+  std::string strategy;  // the name records carry ("ce", "anneal", "random", "bo", ...)
+};
+nlohmann::json PlanToJson(const GenerationPlan& plan);
+/// Throws std::runtime_error for JSON that is not a plan.
+GenerationPlan PlanFromJson(const nlohmann::json& json);
+
+/// The search's state between generations: Next() plans a generation, Add() learns from its
+/// records. RunSearch is a loop over it; src/campaign replays it from records on disk.
+class SearchPlanner {
+ public:
+  /// Throws as RunSearch does for bad options and NothingToSearch.
+  SearchPlanner(const lang::CompiledProgram& program, const SearchOptions& options);
+  ~SearchPlanner();
+  bool done() const;
+  /// The next generation (for kExternal, from options.propose).
+  GenerationPlan Next();
+  /// The records of the generation Next() planned last, in index order.
+  void Add(std::vector<harness::EpisodeRecord> records);
+  /// What the search has found so far (records in evaluation order).
+  const SearchSummary& summary() const;
+  SearchSummary TakeSummary();
+
+ private:
+  struct State;
+  std::unique_ptr<State> state_;
+};
+
+/// Runs episodes [first, first + count) of `plan` (all of it: plan.start, plan.count) with
+/// `run`'s seed, threads, sampling options and callbacks; records carry "search" {strategy,
+/// generation} and the spec hash. Throws what harness::RunEpisodes throws.
+harness::RunSummary RunGeneration(const lang::CompiledProgram& program,
+                                  const harness::ControllerFactory& factory,
+                                  const GenerationPlan& plan, harness::RunOptions run,
+                                  uint64_t first, int64_t count);
+
+/// What the planner needs of a record read back from JSON (index, outcome, score,
+/// coordinates); false for a line that is not a record.
+bool ParseRecordForSearch(const std::string& line, harness::EpisodeRecord* record);
 
 /// Runs the search. The records are a pure function of (program, controller, strategy,
 /// budget, batch, seed): the same for any thread count. Throws std::invalid_argument for a

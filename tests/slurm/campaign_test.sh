@@ -3,7 +3,9 @@
 # init a 9-shard Table-Cube test campaign, submit it as a job array (at most 2 tasks at once),
 # cancel one running task with scancel and SIGKILL another task's prs, check that `prs campaign
 # status` reports both as failed, `prs campaign resume`, wait, merge, and compare the merged
-# records with one machine's `prs test` of the same N and seed (every field but wall_s).
+# records with one machine's `prs test` of the same N and seed (every field but wall_s). Then a
+# search campaign (three generations, each a job array and a next-step job that plans and
+# submits the next) with one task cancelled: merged, it equals one machine's `prs search`.
 # Without root or Slurm's packages it prints SKIPPED and the reason, and exits 0; on Debian 12
 # as root after scripts/setup.sh it must run.
 # Usage: tests/slurm/campaign_test.sh PRS_BINARY
@@ -89,7 +91,8 @@ grep -q "9 of 9 done" <<<"$status" || fail "after resume: $status"
 "$prs" campaign merge "$camp" -o "$work/merged.jsonl"
 
 "$prs" test "$example" --controller table-cube -n $n -s 7 -o "$work/single.jsonl" >/dev/null
-python3 - "$work/merged.jsonl" "$work/single.jsonl" <<'EOF' || fail "merged != one machine's run"
+same_records() {  # same_records A.jsonl B.jsonl N: equal in every field but wall_s
+  python3 - "$@" <<'EOF'
 import json, sys
 def records(path):
     out = []
@@ -99,9 +102,36 @@ def records(path):
         out.append(r)
     return out
 merged, single = records(sys.argv[1]), records(sys.argv[2])
-assert len(merged) == len(single) == 100, (len(merged), len(single))
+assert len(merged) == len(single) == int(sys.argv[3]), (len(merged), len(single))
 for i, (a, b) in enumerate(zip(merged, single)):
     assert a == b, f"record {i} differs"
-print("slurm campaign test: 100 merged records equal one machine's run but wall_s", file=sys.stderr)
+print(f"slurm campaign test: {len(merged)} merged records equal one machine's run but wall_s",
+      file=sys.stderr)
 EOF
+}
+same_records "$work/merged.jsonl" "$work/single.jsonl" $n || fail "merged != one machine's run"
+
+# A search campaign on Slurm: three generations of 20 in shards of 10; the next-step job of
+# generation 0 submits generation 1, one of whose tasks is cancelled as it runs; the next step
+# after that submits it again.
+search=$work/search
+"$prs" campaign init "$search" "$example" --controller table-cube -n 60 --search ce --batch 20 \
+  --shard-size 10 -s 3
+"$prs" campaign slurm "$search" --max-running 2 >/dev/null
+second_array() { [[ -f $search/slurm/submit-1.json ]]; }
+wait_for 120 second_array || fail "no next step submitted generation 1"
+second=$(python3 -c 'import json, sys; print(json.load(open(sys.argv[1]))["job_id"])' \
+  "$search/slurm/submit-1.json")
+wait_for 60 is_running "$second" 2 || fail "generation 1's shard 2 never ran"
+scancel "${second}_2"
+search_done() { "$prs" campaign status "$search" 2>/dev/null | grep -q "6 of 6 done"; }
+wait_for 300 search_done ||
+  fail "the search campaign did not finish: $("$prs" campaign status "$search" 2>&1)"
+grep -qx "#SBATCH --array=2%2" "$search"/slurm/submit-2.sh ||
+  fail "the cancelled shard 2 was not submitted again: $(cat "$search"/slurm/submit-2.sh)"
+"$prs" campaign merge "$search" -o "$work/search_merged.jsonl" >/dev/null
+"$prs" search "$example" --controller table-cube --budget 60 --batch 20 -s 3 -q \
+  -o "$work/search_single.jsonl" >/dev/null
+same_records "$work/search_merged.jsonl" "$work/search_single.jsonl" 60 ||
+  fail "the merged search != one machine's prs search"
 echo "slurm campaign test: passed" >&2

@@ -154,5 +154,57 @@ TEST_F(PrsTest, CampaignSlurmRecordsSubmissionsAndResumesWhatTheQueueLost) {
       << r.out;
 }
 
+// A search campaign from the command line: generation after generation with run-shard, merged
+// into exactly `prs search -o`; its options checked at init.
+TEST_F(PrsTest, CampaignSearchRunsGenerationAfterGenerationAsPrsSearch) {
+  const std::string dir = (dir_ / "search").string();
+  Result r = Run({"campaign", "init", dir, Example("table_cube.prs"), "-n", "50", "--batch", "20"});
+  EXPECT_EQ(r.exit_code, 2);
+  EXPECT_NE(r.err.find("give --search too"), std::string::npos) << r.err;
+  r = Run({"campaign", "init", dir, Example("table_cube.prs"), "-n", "50", "--search", "ce"});
+  EXPECT_EQ(r.exit_code, 2);
+  EXPECT_NE(r.err.find("--search needs a controller"), std::string::npos) << r.err;
+  r = Run({"campaign", "init", dir, Example("table_cube.prs"), "-n", "50", "--search", "bo",
+           "--controller", "planted-1-percent"});
+  EXPECT_EQ(r.exit_code, 2);
+  r = Run({"campaign", "init", dir, Example("table_cube.prs"), "--controller", "planted-1-percent",
+           "-n", "50", "--search", "anneal", "--batch", "20", "--shard-size", "8", "-s", "6"});
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  EXPECT_NE(r.err.find("3 generations of 20"), std::string::npos) << r.err;
+  r = Run({"campaign", "status", dir});
+  EXPECT_NE(r.out.find("0 of 8 done, 0 queued, 0 running, 0 failed, 3 missing, 0 bad, 5 waiting; "
+                       "search generation 1 of 3"),
+            std::string::npos)
+      << r.out;
+  r = Run({"campaign", "run-shard", dir, "3"});
+  EXPECT_EQ(r.exit_code, 2);
+  EXPECT_NE(r.err.find("run that generation's shards first (0, 1, 2)"), std::string::npos) << r.err;
+  for (int k = 0; k < 8; ++k) {
+    r = Run({"campaign", "run-shard", dir, std::to_string(k), "--threads", "2"});
+    ASSERT_EQ(r.exit_code, 0) << k << r.err;
+  }
+  const std::string merged = (dir_ / "merged.jsonl").string();
+  r = Run({"campaign", "merge", dir, "-o", merged});
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  const std::string single = (dir_ / "single.jsonl").string();
+  r = Run({"search", Example("table_cube.prs"), "--controller", "planted-1-percent", "--budget",
+           "50", "--batch", "20", "--strategy", "anneal", "-s", "6", "-q", "-o", single});
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  const auto without_times = [](const std::string& text) {
+    std::vector<nlohmann::json> records;
+    std::istringstream lines(text);
+    for (std::string line; std::getline(lines, line);) {
+      records.push_back(nlohmann::json::parse(line));
+      records.back().erase("wall_s");
+    }
+    return records;
+  };
+  const auto a = without_times(ReadText(merged)), b = without_times(ReadText(single));
+  EXPECT_EQ(a.size(), 50u);
+  EXPECT_EQ(a, b);
+  r = Run({"campaign", "slurm", dir, "--print"});
+  EXPECT_NE(r.err.find("the search is complete"), std::string::npos) << r.err;
+}
+
 }  // namespace
 }  // namespace prs::cli

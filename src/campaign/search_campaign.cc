@@ -1,0 +1,148 @@
+// Search campaigns: the search replayed from the shards on disk, generation plans written for
+// the shards, and a shard's episodes run from its generation's plan.
+#include "campaign/search_campaign.h"
+
+#include <fmt/format.h>
+
+#include <filesystem>
+#include <nlohmann/json.hpp>
+#include <sstream>
+
+#include "campaign/files.h"
+
+namespace prs::campaign {
+namespace fs = std::filesystem;
+
+search::SearchOptions MakeSearchOptions(const CampaignSpec& spec) {
+  search::SearchOptions options;
+  if (!search::ParseStrategy(spec.strategy, &options.strategy)) {
+    throw CampaignError("the campaign's search strategy '" + spec.strategy +
+                        "' is not one prs runs (" +
+                        fmt::format("{}", fmt::join(search::StrategyNames(), ", ")) + ")");
+  }
+  options.budget = static_cast<int64_t>(spec.count);
+  options.batch = static_cast<int64_t>(spec.batch);
+  options.run.sample.max_attempts = spec.max_attempts;
+  options.run.sample.run.mode =
+      spec.naive ? lang::SamplingMode::kNaive : lang::SamplingMode::kRegion;
+  options.run.seed = spec.seed;
+  return options;
+}
+
+std::string GenerationPlanPath(const std::string& dir, uint64_t g) {
+  return fmt::format("{}/search/generation-{:04d}.json", dir, g);
+}
+
+std::optional<search::GenerationPlan> ReadGenerationPlan(const std::string& dir, uint64_t g) {
+  bool ok = false;
+  const std::string path = GenerationPlanPath(dir, g);
+  const std::string text = ReadFileText(path, &ok);
+  if (!ok) return std::nullopt;
+  const auto json = nlohmann::json::parse(text, nullptr, false);
+  try {
+    if (json.is_discarded()) throw std::runtime_error("not JSON");
+    search::GenerationPlan plan = search::PlanFromJson(json);
+    if (static_cast<uint64_t>(plan.generation) != g) throw std::runtime_error("another generation");
+    return plan;
+  } catch (const std::exception& error) {
+    throw CampaignError(path + " is not generation " + std::to_string(g) + "'s plan (" +
+                        error.what() + "); delete it and run prs campaign resume to plan it again");
+  }
+}
+
+namespace {
+
+// The records of generation g's shards, all done, in index order.
+std::vector<harness::EpisodeRecord> ReadGenerationRecords(const std::string& dir,
+                                                          const CampaignSpec& spec, uint64_t g) {
+  std::vector<harness::EpisodeRecord> records;
+  for (uint64_t k : spec.generation_shards(g)) {
+    bool ok = false;
+    std::stringstream text(ReadFileText(ShardPath(dir, k), &ok));
+    int line_number = 0;
+    for (std::string line; std::getline(text, line);) {
+      ++line_number;
+      harness::EpisodeRecord record;
+      if (!search::ParseRecordForSearch(line, &record)) {
+        throw CampaignError(fmt::format("{}:{}: not an episode record; run shard {} again",
+                                        ShardPath(dir, k), line_number, k));
+      }
+      records.push_back(std::move(record));
+    }
+  }
+  return records;
+}
+
+bool GenerationDone(const std::string& dir, const CampaignSpec& spec, uint64_t g,
+                    std::vector<uint64_t>* unfinished) {
+  for (uint64_t k : spec.generation_shards(g)) {
+    if (CheckShard(dir, spec, k).state != ShardStatus::State::kDone) unfinished->push_back(k);
+  }
+  return unfinished->empty();
+}
+
+}  // namespace
+
+SearchStep PlanSearchStep(const std::string& dir, const CampaignSpec& spec,
+                          const lang::CompiledProgram& program) {
+  search::SearchPlanner planner(program, MakeSearchOptions(spec));
+  SearchStep step;
+  for (uint64_t g = 0; !planner.done(); ++g) {
+    const search::GenerationPlan plan = planner.Next();
+    const std::string text = search::PlanToJson(plan).dump() + "\n";
+    const std::optional<search::GenerationPlan> written = ReadGenerationPlan(dir, g);
+    if (written && search::PlanToJson(*written).dump() + "\n" != text) {
+      throw CampaignError(fmt::format(
+          "{} differs from the search replayed from the shards before it: was it written by "
+          "another prs? Start a new campaign",
+          GenerationPlanPath(dir, g)));
+    }
+    std::vector<uint64_t> unfinished;
+    if (!written || !GenerationDone(dir, spec, g, &unfinished)) {
+      if (!written) {
+        std::error_code error;
+        fs::create_directories(dir + "/search", error);
+        WriteFileAtomically(GenerationPlanPath(dir, g), text);
+        unfinished.clear();
+        GenerationDone(dir, spec, g, &unfinished);
+      }
+      step.generation = g;
+      step.unfinished = unfinished;
+      return step;
+    }
+    planner.Add(ReadGenerationRecords(dir, spec, g));
+  }
+  step.finished = true;
+  step.generation = spec.generations();
+  return step;
+}
+
+std::vector<std::string> RunSearchShard(const std::string& dir, const CampaignSpec& spec,
+                                        const lang::CompiledProgram& program, uint64_t k,
+                                        const harness::ControllerFactory& factory, int threads,
+                                        const std::atomic<bool>* cancel) {
+  const uint64_t g = spec.generation(k);
+  std::optional<search::GenerationPlan> plan = ReadGenerationPlan(dir, g);
+  if (!plan) {
+    const SearchStep step = PlanSearchStep(dir, spec, program);
+    if (step.generation < g) {
+      throw CampaignError(fmt::format(
+          "shard {} belongs to generation {}, which is planned from the records of generation "
+          "{}: run that generation's shards first ({})",
+          k, g, step.generation, fmt::join(step.unfinished, ", ")));
+    }
+    plan = ReadGenerationPlan(dir, g);
+  }
+  harness::RunOptions run = MakeSearchOptions(spec).run;
+  run.threads = threads;
+  run.cancel = cancel;
+  std::vector<std::string> lines;
+  run.on_record = [&](const harness::EpisodeRecord& record) {
+    lines.push_back(harness::FormatRecordJson(record));
+  };
+  search::RunGeneration(program, factory, *plan, run, spec.first(k),
+                        static_cast<int64_t>(spec.size(k)));
+  return lines;
+}
+
+}  // namespace prs::campaign
