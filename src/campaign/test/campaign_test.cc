@@ -8,6 +8,7 @@
 #include <fstream>
 #include <nlohmann/json.hpp>
 
+#include "campaign/test/campaign_dir.h"
 #include "harness/registry.h"
 #include "output/scene_json.h"
 #include "sampling/batch.h"
@@ -24,13 +25,7 @@ std::unique_ptr<lang::CompiledProgram> CompileTableCube() {
 
 class CampaignTest : public testing::Test {
  protected:
-  void SetUp() override {
-    dir_ = (fs::temp_directory_path() /
-            ("prs_campaign_test_" + std::to_string(::getpid()) + "_" +
-             testing::UnitTest::GetInstance()->current_test_info()->name()))
-               .string();
-    fs::remove_all(dir_);
-  }
+  void SetUp() override { dir_ = MakeTestCampaignDir(); }
   void TearDown() override { fs::remove_all(dir_); }
 
   CampaignSpec Init(const std::string& kind, uint64_t count, uint64_t shard_size) {

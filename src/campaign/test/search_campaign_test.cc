@@ -10,6 +10,7 @@
 #include <nlohmann/json.hpp>
 
 #include "campaign/slurm.h"
+#include "campaign/test/campaign_dir.h"
 #include "harness/registry.h"
 #include "sampling/test/scene_checks.h"
 
@@ -41,11 +42,7 @@ TEST(SearchShardPlanTest, GenerationsAreCutOneByOne) {
 class SearchCampaignTest : public testing::Test {
  protected:
   void SetUp() override {
-    dir_ = (fs::temp_directory_path() /
-            ("prs_search_campaign_test_" + std::to_string(::getpid()) + "_" +
-             testing::UnitTest::GetInstance()->current_test_info()->name()))
-               .string();
-    fs::remove_all(dir_);
+    dir_ = MakeTestCampaignDir();
     program_ = sampling::testing_checks::CompileExample("table_cube.prs");
     factory_ = [] { return harness::MakePlantedController(harness::PlantedOnePercent()); };
   }

@@ -8,6 +8,7 @@
 #include <filesystem>
 #include <fstream>
 
+#include "campaign/test/campaign_dir.h"
 #include "sampling/test/scene_checks.h"
 
 namespace prs::campaign {
@@ -46,11 +47,7 @@ TEST(SqueueLinesTest, JobIdsCompareAsNumbers) {
 class SlurmCampaignTest : public testing::Test {
  protected:
   void SetUp() override {
-    dir_ = (fs::temp_directory_path() /
-            ("prs_slurm_test_" + std::to_string(::getpid()) + "_" +
-             testing::UnitTest::GetInstance()->current_test_info()->name()))
-               .string();
-    fs::remove_all(dir_);
+    dir_ = MakeTestCampaignDir();
     program_ = sampling::testing_checks::CompileExample("table_cube.prs");
     CampaignSpec spec;
     spec.kind = "sample";

@@ -1,5 +1,7 @@
 // End-to-end tests of `prs campaign`: shards run in any order merge into one machine's run, bad
-// shards and requests are named, and the Slurm job script runs exactly the unfinished shards.
+// shards and requests are named, the Slurm job script runs exactly the unfinished shards,
+// submissions are recorded and resumed (with sbatch and squeue stand-ins), and a search
+// campaign equals `prs search`.
 #include <nlohmann/json.hpp>
 
 #include "cli/test/json_lines.h"
@@ -9,6 +11,14 @@ namespace prs::cli {
 namespace {
 
 using nlohmann::json;
+
+// The records of a JSON Lines file without their wall-clock times (the one field that differs
+// between a campaign and one machine's run).
+std::vector<json> ReadRecordsWithoutTimes(const std::string& path) {
+  std::vector<json> records = ReadRecords(path);
+  for (json& record : records) record.erase("wall_s");
+  return records;
+}
 
 TEST_F(PrsTest, CampaignShardsMergeIntoOneMachinesRun) {
   const std::string dir = (dir_ / "campaign").string();
@@ -28,11 +38,7 @@ TEST_F(PrsTest, CampaignShardsMergeIntoOneMachinesRun) {
   r = Run({"test", Example("table_cube.prs"), "--controller", "demo-reach", "-n", "40", "-s", "3",
            "-o", single});
   ASSERT_EQ(r.exit_code, 0) << r.err;
-  std::vector<json> a = ReadRecords(merged), b = ReadRecords(single);
-  for (std::vector<json>* records : {&a, &b}) {
-    for (json& record : *records) record.erase("wall_s");
-  }
-  EXPECT_EQ(a, b);
+  EXPECT_EQ(ReadRecordsWithoutTimes(merged), ReadRecordsWithoutTimes(single));
   // A shard out of range, a truncated shard, and merge refusing an incomplete campaign.
   r = Run({"campaign", "run-shard", dir, "6"});
   EXPECT_EQ(r.exit_code, 2);
@@ -190,18 +196,9 @@ TEST_F(PrsTest, CampaignSearchRunsGenerationAfterGenerationAsPrsSearch) {
   r = Run({"search", Example("table_cube.prs"), "--controller", "planted-1-percent", "--budget",
            "50", "--batch", "20", "--strategy", "anneal", "-s", "6", "-q", "-o", single});
   ASSERT_EQ(r.exit_code, 0) << r.err;
-  const auto without_times = [](const std::string& text) {
-    std::vector<nlohmann::json> records;
-    std::istringstream lines(text);
-    for (std::string line; std::getline(lines, line);) {
-      records.push_back(nlohmann::json::parse(line));
-      records.back().erase("wall_s");
-    }
-    return records;
-  };
-  const auto a = without_times(ReadText(merged)), b = without_times(ReadText(single));
+  const std::vector<json> a = ReadRecordsWithoutTimes(merged);
   EXPECT_EQ(a.size(), 50u);
-  EXPECT_EQ(a, b);
+  EXPECT_EQ(a, ReadRecordsWithoutTimes(single));
   r = Run({"campaign", "slurm", dir, "--print"});
   EXPECT_NE(r.err.find("the search is complete"), std::string::npos) << r.err;
 }
