@@ -15,6 +15,7 @@ prs=$(realpath "${1:-build/src/cli/prs}")
 n=${2:-2000}
 shard=${3:-100}
 example=$PWD/examples/table_cube.prs
+python=${PRS_PYTHON:-/usr/bin/python3}  # Debian's, which has python3-distributed
 work=$(mktemp -d /tmp/prs_campaign_bench.XXXXXX)
 chmod 755 "$work"
 trap 'tests/slurm/cluster.sh stop "$work/cluster" || true; rm -rf "$work"' EXIT
@@ -63,21 +64,7 @@ for running in 1 2; do
   "$prs" campaign merge "$dir" -o "$dir.jsonl" >/dev/null 2>&1
   same_records "$dir.jsonl" "$work/single.jsonl"
 done
-PYTHONPATH=${PYTHONPATH:-$PWD/build/python} python3 - "$work" "$example" "$n" "$shard" <<'EOF'
-import sys, time
-from distributed import Client, LocalCluster
-import probrobscene.campaign as campaign
-work, example, n, shard = sys.argv[1], sys.argv[2], int(sys.argv[3]), int(sys.argv[4])
-start = time.time()
-with LocalCluster(n_workers=2, threads_per_worker=1, dashboard_address=None) as cluster, \
-        Client(cluster) as client:
-    ready = time.time()
-    campaign.run(example, client, dir=f"{work}/dask", n=n, shard_size=shard, seed=1,
-                 controller="table-cube")
-done = time.time()
-campaign.merge(f"{work}/dask", f"{work}/dask.jsonl")
-print(f"Dask LocalCluster, 2 workers of 1 thread: {done - start:.2f} s "
-      f"(of which the cluster's start {ready - start:.2f} s)")
-EOF
+PYTHONPATH=${PYTHONPATH:-$PWD/build/python} "$python" bench/campaign_dask.py "$work" "$example" "$n" \
+  "$shard"
 same_records "$work/dask.jsonl" "$work/single.jsonl"
 echo "every merged campaign equals one machine's run"

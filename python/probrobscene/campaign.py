@@ -10,10 +10,11 @@ shards that are not done::
     from distributed import Client, LocalCluster
     import probrobscene.campaign as campaign
 
-    with LocalCluster(n_workers=2, threads_per_worker=1) as cluster, Client(cluster) as client:
-        campaign.run("examples/table_cube.prs", client, dir="camp", n=2000, shard_size=100,
-                     seed=1, controller="table-cube")
-    campaign.merge("camp", "results.jsonl")
+    if __name__ == "__main__":  # Dask's worker processes import the main module again
+        with LocalCluster(n_workers=2, threads_per_worker=1) as cluster, Client(cluster) as client:
+            campaign.run("examples/table_cube.prs", client, dir="camp", n=2000,
+                         shard_size=100, seed=1, controller="table-cube")
+        campaign.merge("camp", "results.jsonl")
 """
 
 import os

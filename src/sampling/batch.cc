@@ -214,15 +214,20 @@ struct StopQueueOnExit {
 
 // Small batches are claimed one scene at a time so that every thread gets a share; large ones
 // in runs of up to 16, which is plenty to amortise the lock.
-int64_t ChooseChunk(int64_t count, int threads) {
-  constexpr int64_t kMaxChunk = 16;
-  return std::clamp<int64_t>(count / (int64_t{threads} * 16), 1, kMaxChunk);
+// Scenes a worker claims at once. A worker publishes its claim only when it has sampled all of
+// it, so a claim must leave room in the window for the other workers' claims: at most half a
+// thread's share of the window (with the harness's window of 4 per thread, 2 episodes; a chunk
+// as large as the window made one worker hold it all while the others waited).
+int64_t ChooseChunk(int64_t count, int threads, int window_per_thread) {
+  const int64_t max_chunk = std::clamp<int64_t>(window_per_thread / 2, 1, 16);
+  return std::clamp<int64_t>(count / (int64_t{threads} * 16), 1, max_chunk);
 }
 
 BatchSummary SampleOnWorkers(const lang::CompiledProgram& program, const BatchOptions& options,
                              const BatchCallbacks& callbacks, int threads) {
   const int64_t window = int64_t{threads} * std::max(options.window_per_thread, 1);
-  ReorderQueue queue(options.count, window, ChooseChunk(options.count, threads));
+  ReorderQueue queue(options.count, window,
+                     ChooseChunk(options.count, threads, std::max(options.window_per_thread, 1)));
   BatchSummary summary;
   std::vector<std::jthread> workers;
   StopQueueOnExit stop_queue{queue};

@@ -8,7 +8,9 @@
 
 #include <filesystem>
 #include <fstream>
+#include <chrono>
 #include <mutex>
+#include <thread>
 #include <set>
 
 #include "harness/registry.h"
@@ -88,6 +90,40 @@ TEST(RunEpisodesTest, RecordsComeInIndexOrderAndMatchForAnyThreadCount) {
   std::set<std::string> kinds;
   for (const EpisodeRecord& record : one.records) kinds.insert(record.result.outcome);
   EXPECT_GE(kinds.size(), 3u) << "the scripted controller should give several outcomes";
+}
+
+// Counts how many episodes run at the same time (each sleeps 2 ms, so two threads that share
+// the work overlap).
+class ConcurrencyController : public Controller {
+ public:
+  ConcurrencyController(std::atomic<int>* running, std::atomic<int>* most)
+      : running_(running), most_(most) {}
+  EpisodeResult RunEpisode(const sampling::SampledScene&, const std::string&) override {
+    const int now = ++*running_;
+    for (int seen = most_->load(); now > seen && !most_->compare_exchange_weak(seen, now);) {
+    }
+    std::this_thread::sleep_for(std::chrono::milliseconds(2));
+    --*running_;
+    return {"success", ""};
+  }
+
+ private:
+  std::atomic<int>* running_;
+  std::atomic<int>* most_;
+};
+
+// Regression: with many episodes a worker used to claim the whole reordering window (a chunk
+// of up to 16 against a window of 4 per thread) and run it alone while the others waited, so
+// `prs test --threads 2` of 2,000 Table-Cube episodes took as long as one thread.
+TEST(RunEpisodesTest, ManyEpisodesRunOnEveryThreadAtOnce) {
+  auto program = CompileTableCube();
+  std::atomic<int> running{0}, most{0};
+  const ControllerFactory factory = [&] {
+    return std::make_unique<ConcurrencyController>(&running, &most);
+  };
+  RunOptions options = MakeOptions(400, 2);
+  RunEpisodes(*program, factory, options);
+  EXPECT_EQ(most.load(), 2) << "the two threads never ran episodes at the same time";
 }
 
 TEST(RunEpisodesTest, FailuresCarryTheRegenerateCommand) {
