@@ -305,7 +305,9 @@ int RunSlurm(CampaignArgs args, bool resume) {
         active_jobs.push_back(task->second.job_id);
       }
     }
-    if (shards.empty() && (active_jobs.empty() || args.print_only)) {
+    const bool last_generation =
+        generation < 0 || static_cast<uint64_t>(generation) + 1 >= spec.generations();
+    if (shards.empty() && (active_jobs.empty() || args.print_only || last_generation)) {
       PrintNote("no shard to submit: each is done, queued or running (prs campaign status " +
                 args.dir + ")");
       return kExitSuccess;
@@ -330,18 +332,30 @@ int RunSlurm(CampaignArgs args, bool resume) {
       if (!shards.empty()) {
         submission.job_id = campaign::SubmitToSlurm(script, args.slurm.extra);
         active_jobs.push_back(submission.job_id);
+        campaign::WriteSubmission(dir, submission);  // recorded before anything else can fail
       }
       // A search's next generation is planned from this one's records: a job that waits for
       // this generation's arrays plans and submits it, with its own next step, up to the last.
-      if (generation >= 0 && static_cast<uint64_t>(generation) + 1 < spec.generations()) {
+      if (!last_generation) {
         const std::string next = campaign::WriteSlurmScript(
             dir, number,
             campaign::FormatNextStepScript(
                 dir, spec, number, fmt::format("{}", fmt::join(active_jobs, ":")), args.slurm),
             "next");
-        submission.next_job_id = campaign::SubmitToSlurm(next, args.slurm.extra);
+        try {
+          submission.next_job_id = campaign::SubmitToSlurm(next, args.slurm.extra);
+        } catch (const campaign::CampaignError& error) {
+          PrintError(fmt::format(
+              "{}{}; run prs campaign resume {} when this generation's tasks have ended",
+              error.what(),
+              submission.job_id.empty() ? ""
+                                        : " (Slurm job " + submission.job_id +
+                                              " with the generation's shards was submitted)",
+              args.dir));
+          return kExitScenarioError;
+        }
+        campaign::WriteSubmission(dir, submission);
       }
-      campaign::WriteSubmission(dir, submission);
       if (!submission.job_id.empty()) std::cout << submission.job_id << "\n" << std::flush;
       PrintNote(fmt::format(
           "submitted {}{}; follow it with prs campaign status {}",
