@@ -81,37 +81,76 @@ bool IsLaterJob(const std::string& a, const std::string& b) {
 std::string SlurmJobName(const CampaignSpec& spec) { return "prs-" + spec.id.substr(0, 8); }
 
 std::string FormatSlurmScript(const std::string& dir, const CampaignSpec& spec,
-                              const std::vector<uint64_t>& shards, const SlurmOptions& options) {
-  // The array's indices: runs of consecutive shards as ranges ("0-7,9,12-15").
+                              const std::vector<uint64_t>& shards, uint64_t offset,
+                              const SlurmOptions& options) {
+  // The array's indices, shard - offset: runs of consecutive ones as ranges ("0-7,9,12-15").
   std::string array;
   for (size_t i = 0; i < shards.size();) {
     size_t j = i;
     while (j + 1 < shards.size() && shards[j + 1] == shards[j] + 1) ++j;
-    array += fmt::format(
-        "{}{}", array.empty() ? "" : ",",
-        i == j ? fmt::format("{}", shards[i]) : fmt::format("{}-{}", shards[i], shards[j]));
+    const uint64_t a = shards[i] - offset, b = shards[j] - offset;
+    array += fmt::format("{}{}", array.empty() ? "" : ",",
+                         i == j ? fmt::format("{}", a) : fmt::format("{}-{}", a, b));
     i = j + 1;
   }
   if (options.max_running > 0) array += fmt::format("%{}", options.max_running);
+  // Slurm's own messages (cancelled, timed out) go to slurm-JOB_INDEX.out; the shard's output
+  // to shard-K.JOB.out and .err, named by the shard, not the array index.
   std::string script = fmt::format(
       "#!/bin/bash\n"
       "# prs campaign {} ({}): {} of {} shard(s), written by prs campaign slurm.\n"
       "#SBATCH --job-name={}\n"
       "#SBATCH --array={}\n"
-      "#SBATCH --output={}/logs/shard-%a.%A.out\n"
-      "#SBATCH --error={}/logs/shard-%a.%A.err\n"
+      "#SBATCH --output={}/logs/slurm-%A_%a.out\n"
       "#SBATCH --cpus-per-task={}\n",
-      spec.id, spec.kind, shards.size(), spec.shards(), SlurmJobName(spec), array, dir, dir,
+      spec.id, spec.kind, shards.size(), spec.shards(), SlurmJobName(spec), array, dir,
       options.cpus_per_task);
   if (!options.partition.empty()) script += "#SBATCH --partition=" + options.partition + "\n";
   if (!options.time.empty()) script += "#SBATCH --time=" + options.time + "\n";
   if (!options.mem.empty()) script += "#SBATCH --mem=" + options.mem + "\n";
+  const std::string logs =
+      harness::QuoteForShell(dir + "/logs") + "/shard-$shard.$SLURM_ARRAY_JOB_ID";
   script += fmt::format(
       "set -eu\n"
-      "exec {} campaign run-shard {} \"$SLURM_ARRAY_TASK_ID\" --threads "
-      "\"${{SLURM_CPUS_PER_TASK:-{}}}\"\n",
-      harness::QuoteForShell(options.prs), harness::QuoteForShell(dir), options.cpus_per_task);
+      "shard=$(({} + SLURM_ARRAY_TASK_ID))\n"
+      "exec {} campaign run-shard {} \"$shard\" --threads \"${{SLURM_CPUS_PER_TASK:-{}}}\" "
+      ">\"{}.out\" 2>\"{}.err\"\n",
+      offset, harness::QuoteForShell(options.prs), harness::QuoteForShell(dir),
+      options.cpus_per_task, logs, logs);
   return script;
+}
+
+std::vector<std::vector<uint64_t>> SplitIntoArrays(const std::vector<uint64_t>& shards,
+                                                   uint64_t max_array_size) {
+  std::vector<std::vector<uint64_t>> arrays;
+  for (uint64_t k : shards) {
+    if (arrays.empty() || k - arrays.back().front() >= std::max<uint64_t>(max_array_size, 1)) {
+      arrays.emplace_back();
+    }
+    arrays.back().push_back(k);
+  }
+  return arrays;
+}
+
+uint64_t QueryMaxArraySize() {
+  constexpr uint64_t kSlurmDefault = 1001;
+  if (!HasProgram("scontrol")) return kSlurmDefault;
+  const CommandResult result = RunCommand("scontrol show config");
+  if (result.exit_code != 0) return kSlurmDefault;
+  std::stringstream lines(result.output);
+  for (std::string line; std::getline(lines, line);) {
+    // "MaxArraySize            = 1001"
+    if (line.rfind("MaxArraySize", 0) != 0) continue;
+    const size_t equals = line.find('=');
+    if (equals == std::string::npos) break;
+    const std::string value = Trim(line.substr(equals + 1));
+    if (value.empty() || value.size() > 12 ||
+        value.find_first_not_of("0123456789") != std::string::npos) {
+      break;
+    }
+    return std::max<uint64_t>(std::stoull(value), 1);
+  }
+  return kSlurmDefault;
 }
 
 std::string FormatNextStepScript(const std::string& dir, const CampaignSpec& spec, int number,
@@ -163,6 +202,7 @@ void WriteSubmission(const std::string& dir, const SlurmSubmission& s) {
                                  {"max_running", s.options.max_running},
                                  {"prs", s.options.prs},
                                  {"extra", s.options.extra},
+                                 {"offset", s.offset},
                                  {"generation", s.generation},
                                  {"next_job_id", s.next_job_id}};
   WriteFileAtomically(SubmissionPath(dir, s.number, "json"), record.dump() + "\n");
@@ -188,6 +228,7 @@ std::vector<SlurmSubmission> ReadSubmissions(const std::string& dir) {
       s.options.max_running = j.value("max_running", 0);
       s.options.prs = j.value("prs", "");
       s.options.extra = j.value("extra", "");
+      s.offset = j.value("offset", uint64_t{0});
       s.generation = j.value("generation", int64_t{-1});
       s.next_job_id = j.value("next_job_id", "");
       submissions.push_back(std::move(s));
@@ -227,7 +268,7 @@ bool QueuedTask::active() const {
 }
 
 std::map<uint64_t, QueuedTask> ParseSqueueLines(const std::string& text,
-                                                const std::vector<std::string>& job_ids) {
+                                                const std::map<std::string, uint64_t>& offsets) {
   std::map<uint64_t, QueuedTask> tasks;
   std::stringstream lines(text);
   for (std::string line; std::getline(lines, line);) {
@@ -235,11 +276,15 @@ std::map<uint64_t, QueuedTask> ParseSqueueLines(const std::string& text,
     std::stringstream parts(Trim(line));
     for (std::string field; std::getline(parts, field, '|');) fields.push_back(field);
     if (fields.size() < 3) continue;
-    if (std::find(job_ids.begin(), job_ids.end(), fields[0]) == job_ids.end()) continue;
+    const auto job = offsets.find(fields[0]);
+    if (job == offsets.end()) continue;
     const std::string& index = fields[1];
-    if (index.empty() || index.find_first_not_of("0123456789") != std::string::npos) continue;
-    const uint64_t shard = std::stoull(index);
-    QueuedTask task{fields[0], fields[2], fields.size() > 3 ? fields[3] : ""};
+    if (index.empty() || index.size() > 18 ||
+        index.find_first_not_of("0123456789") != std::string::npos) {
+      continue;
+    }
+    const uint64_t shard = job->second + std::stoull(index);
+    QueuedTask task{fields[0], fields[2], fields.size() > 3 ? fields[3] : "", std::stoull(index)};
     auto it = tasks.find(shard);
     if (it == tasks.end() || IsLaterJob(task.job_id, it->second.job_id)) tasks[shard] = task;
   }
@@ -248,12 +293,13 @@ std::map<uint64_t, QueuedTask> ParseSqueueLines(const std::string& text,
 
 SlurmQueue QuerySlurmQueue(const std::string& dir, const CampaignSpec& spec) {
   SlurmQueue queue;
-  std::vector<std::string> job_ids, next_ids;
+  std::map<std::string, uint64_t> offsets;  // array job id -> its first index's shard
+  std::vector<std::string> next_ids;
   for (const SlurmSubmission& s : ReadSubmissions(dir)) {
-    job_ids.push_back(s.job_id);
+    if (!s.job_id.empty()) offsets[s.job_id] = s.offset;
     if (!s.next_job_id.empty()) next_ids.push_back(s.next_job_id);
   }
-  if (job_ids.empty()) {
+  if (offsets.empty() && next_ids.empty()) {
     queue.available = true;
     return queue;
   }
@@ -271,7 +317,7 @@ SlurmQueue QuerySlurmQueue(const std::string& dir, const CampaignSpec& spec) {
     return queue;
   }
   queue.available = true;
-  queue.tasks = ParseSqueueLines(result.output, job_ids);
+  queue.tasks = ParseSqueueLines(result.output, offsets);
   const char* self = std::getenv("SLURM_JOB_ID");
   std::stringstream lines(result.output);
   for (std::string line; std::getline(lines, line);) {
@@ -281,7 +327,7 @@ SlurmQueue QuerySlurmQueue(const std::string& dir, const CampaignSpec& spec) {
     std::getline(parts, index, '|');
     std::getline(parts, state, '|');
     if (std::find(next_ids.begin(), next_ids.end(), id) != next_ids.end() &&
-        QueuedTask{id, state, ""}.active() && !(self && id == self)) {
+        QueuedTask{id, state, "", 0}.active() && !(self && id == self)) {
       queue.next_steps.push_back(id);
     }
   }
@@ -290,9 +336,9 @@ SlurmQueue QuerySlurmQueue(const std::string& dir, const CampaignSpec& spec) {
 
 std::vector<ShardState> DescribeShards(const std::string& dir, const CampaignSpec& spec,
                                        const SlurmQueue& queue) {
-  std::map<uint64_t, std::string> submitted;  // shard -> its latest job id
+  std::map<uint64_t, std::pair<std::string, uint64_t>> submitted;  // shard -> job id, index
   for (const SlurmSubmission& s : ReadSubmissions(dir)) {
-    for (uint64_t k : s.shards) submitted[k] = s.job_id;
+    for (uint64_t k : s.shards) submitted[k] = {s.job_id, k - s.offset};
   }
   using Kind = ShardState::Kind;
   std::vector<ShardState> states;
@@ -310,7 +356,7 @@ std::vector<ShardState> DescribeShards(const std::string& dir, const CampaignSpe
     } else if (auto task = queue.tasks.find(k);
                task != queue.tasks.end() && task->second.active()) {
       const QueuedTask& t = task->second;
-      const std::string job = fmt::format("Slurm job {}_{}", t.job_id, k);
+      const std::string job = fmt::format("Slurm job {}_{}", t.job_id, t.index);
       if (t.state == "PENDING") {
         state = {Kind::kQueued,
                  job + (t.reason.empty() || t.reason == "None" ? "" : " waits: " + t.reason)};
@@ -318,15 +364,21 @@ std::vector<ShardState> DescribeShards(const std::string& dir, const CampaignSpe
         state = {Kind::kRunning, job + " is " + t.state};
       }
     } else if (submitted.count(k) && queue.available) {
-      std::string why =
-          task != queue.tasks.end()
-              ? fmt::format("Slurm job {}_{} ended {}", task->second.job_id, k, task->second.state)
-              : fmt::format("Slurm job {}_{} ended", submitted[k], k);
+      const auto& [job_id, index] = submitted[k];
+      std::string why = task != queue.tasks.end()
+                            ? fmt::format("Slurm job {}_{} ended {}", task->second.job_id,
+                                          task->second.index, task->second.state)
+                            : fmt::format("Slurm job {}_{} ended", job_id, index);
       why += " without writing it";
       if (files.state == ShardStatus::State::kRunning) why += " (a .partial file is left)";
-      const std::string log_name = fmt::format("logs/shard-{}.{}.err", k, submitted[k]);
-      const std::string log = ReadLastLogLine(dir + "/" + log_name);
-      if (!log.empty()) why += fmt::format("; {} ends: {}", log_name, log);
+      // What the shard's prs said last, else what Slurm said (cancelled, timed out, ...).
+      for (const std::string& log_name : {fmt::format("logs/shard-{}.{}.err", k, job_id),
+                                          fmt::format("logs/slurm-{}_{}.out", job_id, index)}) {
+        const std::string log = ReadLastLogLine(dir + "/" + log_name);
+        if (log.empty()) continue;
+        why += fmt::format("; {} ends: {}", log_name, log);
+        break;
+      }
       state = {Kind::kFailed, why};
     } else if (files.state == ShardStatus::State::kRunning) {
       state = {Kind::kRunning, "running or stopped (" + files.why + " exists)"};
@@ -342,7 +394,7 @@ std::vector<ShardState> DescribeShards(const std::string& dir, const CampaignSpe
         state.why = fmt::format(
             "submitted as Slurm job {}_{}; {}, so whether it still waits is "
             "not known",
-            submitted[k], k, queue.why_not);
+            submitted[k].first, submitted[k].second, queue.why_not);
       }
     }
     states.push_back(std::move(state));

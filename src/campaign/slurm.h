@@ -25,12 +25,24 @@ struct SlurmOptions {
   std::string extra;      // more sbatch arguments, given to sbatch as they are
 };
 
-/// The sbatch script of a job array with one task per shard in `shards` (the array's indices
-/// are the shard numbers), named SlurmJobName(spec), logs in DIR/logs/shard-K.JOB.out and .err
-/// (JOB: the array's job id, so a resubmission keeps the earlier logs), each task running
-/// `prs campaign run-shard DIR $SLURM_ARRAY_TASK_ID`. `dir` should be absolute.
+/// The sbatch script of a job array with one task per shard in `shards` (all >= `offset`; the
+/// array's indices are shard - offset, so that they stay below Slurm's MaxArraySize), named
+/// SlurmJobName(spec), each task running `prs campaign run-shard DIR OFFSET+INDEX` with its
+/// output in DIR/logs/shard-K.JOB.out and .err (JOB: the array's job id, so a resubmission
+/// keeps the earlier logs) and Slurm's own messages in DIR/logs/slurm-JOB_INDEX.out. `dir`
+/// should be absolute.
 std::string FormatSlurmScript(const std::string& dir, const CampaignSpec& spec,
-                              const std::vector<uint64_t>& shards, const SlurmOptions& options);
+                              const std::vector<uint64_t>& shards, uint64_t offset,
+                              const SlurmOptions& options);
+
+/// Cuts `shards` (ascending) into the arrays of one submission: each a run of shards whose
+/// indices from its first shard stay below `max_array_size` (Slurm's MaxArraySize).
+std::vector<std::vector<uint64_t>> SplitIntoArrays(const std::vector<uint64_t>& shards,
+                                                   uint64_t max_array_size);
+
+/// Slurm's MaxArraySize from `scontrol show config`, or 1001 (its default) when it cannot be
+/// asked.
+uint64_t QueryMaxArraySize();
 
 /// "prs-" and the first 8 characters of the campaign id: how squeue finds the campaign's jobs.
 std::string SlurmJobName(const CampaignSpec& spec);
@@ -39,7 +51,8 @@ std::string SlurmJobName(const CampaignSpec& spec);
 struct SlurmSubmission {
   int number = 0;                // N
   std::string job_id;            // the array job id sbatch printed
-  std::vector<uint64_t> shards;  // the array's indices
+  std::vector<uint64_t> shards;  // the shards: array index + offset
+  uint64_t offset = 0;           // the shard of array index 0
   SlurmOptions options;
   int64_t generation = -1;  // search campaigns: the generation the shards belong to
   std::string next_job_id;  // search campaigns: the job that plans and submits the next
@@ -75,6 +88,7 @@ struct QueuedTask {
   std::string job_id;   // the array job id
   std::string state;    // Slurm's word: PENDING, RUNNING, CANCELLED, FAILED, TIMEOUT, ...
   std::string reason;   // squeue's %r (why pending), or "None"
+  uint64_t index = 0;   // the array index (the shard minus its submission's offset)
   bool active() const;  // still queued or running (the shard may yet be written)
 };
 
@@ -90,10 +104,10 @@ struct SlurmQueue {
 };
 
 /// Parses `squeue --noheader --array --states=all --format=%F|%K|%T|%r` lines (%F: the array's
-/// job id; %A would be each task's own), keeping the
-/// tasks of the given array job ids; for a shard listed twice, the later job wins.
+/// job id; %A would be each task's own), keeping the tasks of the given array jobs, each
+/// mapped to its shard (index + the job's offset); for a shard listed twice, the later job wins.
 std::map<uint64_t, QueuedTask> ParseSqueueLines(const std::string& text,
-                                                const std::vector<std::string>& job_ids);
+                                                const std::map<std::string, uint64_t>& offsets);
 
 /// Asks squeue about the campaign's recorded submissions and next steps (none recorded:
 /// available, empty).

@@ -315,32 +315,53 @@ int RunSlurm(CampaignArgs args, bool resume) {
     std::error_code error;
     args.slurm.prs = fs::read_symlink("/proc/self/exe", error).string();
     if (error) args.slurm.prs = "prs";
-    const int number = campaign::FindNextSubmissionNumber(dir);
+    // One job array per run of shards whose indices fit below Slurm's MaxArraySize.
+    // Indices are the shard numbers where they fit, else counted from the array's first shard.
+    const uint64_t max_array_size = campaign::QueryMaxArraySize();
+    const std::vector<std::vector<uint64_t>> arrays =
+        campaign::SplitIntoArrays(shards, max_array_size);
+    const auto offset_of = [&](const std::vector<uint64_t>& array) {
+      return array.back() < max_array_size ? uint64_t{0} : array.front();
+    };
+    int number = campaign::FindNextSubmissionNumber(dir);
     const std::string tasks = FormatCount(static_cast<int64_t>(shards.size()), "array task");
-    std::string script;
-    if (!shards.empty()) {
-      const std::string text = campaign::FormatSlurmScript(dir, spec, shards, args.slurm);
-      script = campaign::WriteSlurmScript(dir, number, text);
-      if (args.print_only) {
+    if (args.print_only) {
+      for (const std::vector<uint64_t>& array : arrays) {
+        const std::string text =
+            campaign::FormatSlurmScript(dir, spec, array, offset_of(array), args.slurm);
+        const std::string script = campaign::WriteSlurmScript(dir, number++, text);
         std::cout << text << std::flush;
-        PrintNote(fmt::format("{} written to {} (not submitted: --print)", tasks, script));
-        return kExitSuccess;
+        PrintNote(fmt::format("{} written to {} (not submitted: --print)",
+                              FormatCount(static_cast<int64_t>(array.size()), "array task"),
+                              script));
       }
+      return kExitSuccess;
     }
     try {
-      campaign::SlurmSubmission submission{number, "", shards, args.slurm, generation, ""};
-      if (!shards.empty()) {
-        submission.job_id = campaign::SubmitToSlurm(script, args.slurm.extra);
-        active_jobs.push_back(submission.job_id);
+      campaign::SlurmSubmission submission;
+      std::vector<std::string> job_ids;
+      for (const std::vector<uint64_t>& array : arrays) {
+        const std::string script = campaign::WriteSlurmScript(
+            dir, number,
+            campaign::FormatSlurmScript(dir, spec, array, offset_of(array), args.slurm));
+        submission = {number++,   campaign::SubmitToSlurm(script, args.slurm.extra),
+                      array,      offset_of(array),
+                      args.slurm, generation,
+                      ""};
         campaign::WriteSubmission(dir, submission);  // recorded before anything else can fail
+        job_ids.push_back(submission.job_id);
+        active_jobs.push_back(submission.job_id);
+        std::cout << submission.job_id << "\n" << std::flush;
       }
       // A search's next generation is planned from this one's records: a job that waits for
       // this generation's arrays plans and submits it, with its own next step, up to the last.
       if (!last_generation) {
+        if (arrays.empty()) submission = {number, "", {}, 0, args.slurm, generation, ""};
         const std::string next = campaign::WriteSlurmScript(
-            dir, number,
-            campaign::FormatNextStepScript(
-                dir, spec, number, fmt::format("{}", fmt::join(active_jobs, ":")), args.slurm),
+            dir, submission.number,
+            campaign::FormatNextStepScript(dir, spec, submission.number,
+                                           fmt::format("{}", fmt::join(active_jobs, ":")),
+                                           args.slurm),
             "next");
         try {
           submission.next_job_id = campaign::SubmitToSlurm(next, args.slurm.extra);
@@ -348,21 +369,21 @@ int RunSlurm(CampaignArgs args, bool resume) {
           PrintError(fmt::format(
               "{}{}; run prs campaign resume {} when this generation's tasks have ended",
               error.what(),
-              submission.job_id.empty() ? ""
-                                        : " (Slurm job " + submission.job_id +
-                                              " with the generation's shards was submitted)",
+              job_ids.empty() ? ""
+                              : fmt::format(" (Slurm job {} with the generation's shards was "
+                                            "submitted)",
+                                            fmt::join(job_ids, ", ")),
               args.dir));
           return kExitScenarioError;
         }
         campaign::WriteSubmission(dir, submission);
       }
-      if (!submission.job_id.empty()) std::cout << submission.job_id << "\n" << std::flush;
       PrintNote(fmt::format(
           "submitted {}{}; follow it with prs campaign status {}",
-          submission.job_id.empty()
+          job_ids.empty()
               ? std::string("no shard (each is queued or running)")
               : fmt::format(
-                    "Slurm job {} ({}{})", submission.job_id, tasks,
+                    "Slurm job {} ({}{})", fmt::join(job_ids, ", "), tasks,
                     generation >= 0 ? fmt::format(" of search generation {}", generation) : ""),
           submission.next_job_id.empty()
               ? ""

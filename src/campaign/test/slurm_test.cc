@@ -26,7 +26,7 @@ TEST(SqueueLinesTest, KeepTheCampaignsTasksAndTheLatestJobPerShard) {
       "9|N/A|PENDING|None\n"     // not an array task
       "garbage\n"
       "  \n";
-  const auto tasks = ParseSqueueLines(text, {"9", "14", "16"});
+  const auto tasks = ParseSqueueLines(text, {{"9", 0}, {"14", 0}, {"16", 0}});
   ASSERT_EQ(tasks.size(), 3u);
   EXPECT_EQ(tasks.at(8).state, "PENDING");
   EXPECT_EQ(tasks.at(8).reason, "JobArrayTaskLimit");
@@ -38,10 +38,28 @@ TEST(SqueueLinesTest, KeepTheCampaignsTasksAndTheLatestJobPerShard) {
 }
 
 TEST(SqueueLinesTest, JobIdsCompareAsNumbers) {
-  const auto tasks = ParseSqueueLines("10|2|CANCELLED|None\n9|2|RUNNING|None\n", {"9", "10"});
+  const auto tasks =
+      ParseSqueueLines("10|2|CANCELLED|None\n9|2|RUNNING|None\n", {{"9", 0}, {"10", 0}});
   ASSERT_EQ(tasks.count(2), 1u);
   EXPECT_EQ(tasks.at(2).job_id, "10");
   EXPECT_FALSE(tasks.at(2).active());
+}
+
+// Arrays past Slurm's MaxArraySize: indices are counted from each array's first shard.
+TEST(SqueueLinesTest, IndicesAreShardsMinusTheArraysOffset) {
+  const auto tasks = ParseSqueueLines("12|0|RUNNING|None\n12|7|PENDING|Priority\n", {{"12", 2000}});
+  ASSERT_EQ(tasks.size(), 2u);
+  EXPECT_EQ(tasks.at(2000).index, 0u);
+  EXPECT_EQ(tasks.at(2007).state, "PENDING");
+  EXPECT_EQ(tasks.at(2007).index, 7u);
+}
+
+TEST(SplitIntoArraysTest, EachArraysIndicesStayBelowMaxArraySize) {
+  using Arrays = std::vector<std::vector<uint64_t>>;
+  EXPECT_EQ(SplitIntoArrays({0, 1, 2, 5}, 1001), (Arrays{{0, 1, 2, 5}}));
+  EXPECT_EQ(SplitIntoArrays({0, 1, 2, 3, 4}, 3), (Arrays{{0, 1, 2}, {3, 4}}));
+  EXPECT_EQ(SplitIntoArrays({1000, 1001, 2500}, 1001), (Arrays{{1000, 1001}, {2500}}));
+  EXPECT_EQ(SplitIntoArrays({}, 1001), Arrays{});
 }
 
 class SlurmCampaignTest : public testing::Test {
@@ -70,8 +88,13 @@ TEST_F(SlurmCampaignTest, ScriptIsAJobArrayOfTheGivenShards) {
   options.cpus_per_task = 2;
   options.max_running = 3;
   options.time = "00:10:00";
-  const std::string script = FormatSlurmScript(dir_, spec_, {0, 1, 2, 4, 7, 8}, options);
+  const std::string script = FormatSlurmScript(dir_, spec_, {0, 1, 2, 4, 7, 8}, 0, options);
   EXPECT_NE(script.find("#SBATCH --array=0-2,4,7-8%3\n"), std::string::npos) << script;
+  EXPECT_NE(script.find("shard=$((0 + SLURM_ARRAY_TASK_ID))\n"), std::string::npos) << script;
+  EXPECT_NE(script.find("/logs/slurm-%A_%a.out\n"), std::string::npos) << script;
+  const std::string later = FormatSlurmScript(dir_, spec_, {1500, 1501, 1503}, 1500, options);
+  EXPECT_NE(later.find("#SBATCH --array=0-1,3%3\n"), std::string::npos) << later;
+  EXPECT_NE(later.find("shard=$((1500 + SLURM_ARRAY_TASK_ID))\n"), std::string::npos) << later;
   EXPECT_NE(script.find("#SBATCH --job-name=" + SlurmJobName(spec_) + "\n"), std::string::npos);
   EXPECT_NE(script.find("#SBATCH --cpus-per-task=2\n"), std::string::npos);
   EXPECT_NE(script.find("#SBATCH --time=00:10:00\n"), std::string::npos);
@@ -89,6 +112,7 @@ TEST_F(SlurmCampaignTest, ShardStatesCombineFilesSubmissionsAndQueue) {
   EXPECT_EQ(submission.number, 0);
   submission.job_id = "40";
   submission.shards = {2, 3, 4};
+  submission.offset = 2;
   submission.options.time = "1:00:00";
   WriteSlurmScript(dir_, submission.number, "#!/bin/bash\n");
   WriteSubmission(dir_, submission);
@@ -97,18 +121,22 @@ TEST_F(SlurmCampaignTest, ShardStatesCombineFilesSubmissionsAndQueue) {
   ASSERT_EQ(read.size(), 1u);
   EXPECT_EQ(read[0].shards, submission.shards);
   EXPECT_EQ(read[0].options.time, "1:00:00");
-  std::ofstream(dir_ + "/logs/shard-2.40.err") << "slurmstepd: error: *** CANCELLED ***\n\n";
+  EXPECT_EQ(read[0].offset, 2u);
+  // Slurm's own message about shard 2 (array index 0); its prs wrote nothing.
+  std::ofstream(dir_ + "/logs/slurm-40_0.out") << "slurmstepd: error: *** CANCELLED ***\n\n";
 
   SlurmQueue queue;
   queue.available = true;
-  queue.tasks = ParseSqueueLines("40|3|RUNNING|None\n40|2|CANCELLED|None\n", {"40"});
+  queue.tasks = ParseSqueueLines("40|1|RUNNING|None\n40|0|CANCELLED|None\n", {{"40", 2}});
   const std::vector<ShardState> states = DescribeShards(dir_, spec_, queue);
   using Kind = ShardState::Kind;
   ASSERT_EQ(states.size(), 5u);
   EXPECT_EQ(states[0].kind, Kind::kDone);
   EXPECT_EQ(states[1].kind, Kind::kDone);
   EXPECT_EQ(states[2].kind, Kind::kFailed);
-  EXPECT_NE(states[2].why.find("ended CANCELLED"), std::string::npos) << states[2].why;
+  EXPECT_NE(states[2].why.find("Slurm job 40_0 ended CANCELLED"), std::string::npos)
+      << states[2].why;
+  EXPECT_NE(states[3].why.find("Slurm job 40_1 is RUNNING"), std::string::npos) << states[3].why;
   EXPECT_NE(states[2].why.find("*** CANCELLED ***"), std::string::npos) << states[2].why;
   EXPECT_EQ(states[3].kind, Kind::kRunning);
   EXPECT_EQ(states[4].kind, Kind::kFailed);  // submitted, gone from the queue, not written

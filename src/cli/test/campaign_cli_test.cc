@@ -66,13 +66,13 @@ TEST_F(PrsTest, CampaignSlurmScriptRunsTheUnfinishedShards) {
   ASSERT_EQ(r.exit_code, 0) << r.err;
   EXPECT_NE(r.out.find("#SBATCH --array=0,2-5%2\n"), std::string::npos) << r.out;
   EXPECT_NE(r.out.find("#SBATCH --partition=debug\n"), std::string::npos) << r.out;
-  EXPECT_NE(r.out.find("/logs/shard-%a.%A.out"), std::string::npos) << r.out;
+  EXPECT_NE(r.out.find("/logs/slurm-%A_%a.out"), std::string::npos) << r.out;
   const std::string script = dir + "/slurm/submit-0.sh";
   ASSERT_TRUE(fs::exists(script));
   // What Slurm does with the script: run it once per array index, with the index set.
   for (const char* task : {"0", "2", "3", "4", "5"}) {
-    const std::string command =
-        std::string("SLURM_ARRAY_TASK_ID=") + task + " bash " + Quote(script) + " >/dev/null 2>&1";
+    const std::string command = std::string("SLURM_ARRAY_JOB_ID=7 SLURM_ARRAY_TASK_ID=") + task +
+                                " bash " + Quote(script) + " >/dev/null 2>&1";
     ASSERT_EQ(std::system(command.c_str()), 0) << task;
   }
   r = Run({"campaign", "status", dir});
@@ -158,6 +158,45 @@ TEST_F(PrsTest, CampaignSlurmRecordsSubmissionsAndResumesWhatTheQueueLost) {
       << r.err;
   EXPECT_NE(r.out.find("1 of 5 done, 0 queued, 0 running, 0 failed, 4 missing"), std::string::npos)
       << r.out;
+}
+
+// Past Slurm's MaxArraySize (here 3, from an scontrol stand-in) the shards go in several
+// arrays, each indexed from its first shard; squeue's indices map back to the shards.
+TEST_F(PrsTest, CampaignSlurmSplitsArraysAtMaxArraySize) {
+  const std::string dir = (dir_ / "campaign").string();
+  const fs::path bin = dir_ / "bin";
+  fs::create_directories(bin);
+  for (const auto& [name, text] : std::vector<std::pair<std::string, std::string>>{
+           {"scontrol", "echo 'MaxArraySize            = 3'\n"},
+           {"sbatch", "n=$(cat " + Quote((dir_ / "jobs").string()) +
+                          " 2>/dev/null || echo 40); n=$((n + 1)); echo $n > " +
+                          Quote((dir_ / "jobs").string()) + "; echo $n\n"},
+           {"squeue", "printf '42|1|RUNNING|None\\n41|0|PENDING|None\\n'\n"}}) {
+    Write("bin/" + name, "#!/bin/sh\n" + text);
+    fs::permissions(bin / name, fs::perms::owner_all);
+  }
+  const std::string env = "PATH=" + Quote(bin.string()) + ":/usr/bin:/bin";
+  Result r = Run({"campaign", "init", dir, Example("table_cube.prs"), "-n", "25", "--shard-size",
+                  "5", "-s", "2"});
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  r = Run({"campaign", "slurm", dir}, env);
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  EXPECT_EQ(r.out, "41\n42\n");
+  const std::string first = ReadText(dir + "/slurm/submit-0.sh");
+  const std::string second = ReadText(dir + "/slurm/submit-1.sh");
+  EXPECT_NE(first.find("#SBATCH --array=0-2\n"), std::string::npos) << first;
+  EXPECT_NE(second.find("#SBATCH --array=0-1\n"), std::string::npos) << second;
+  EXPECT_NE(second.find("shard=$((3 + SLURM_ARRAY_TASK_ID))"), std::string::npos) << second;
+  r = Run({"campaign", "status", dir}, env);
+  EXPECT_NE(r.out.find("shard 4: running: Slurm job 42_1 is RUNNING"), std::string::npos) << r.out;
+  EXPECT_NE(r.out.find("0 of 5 done, 1 queued, 1 running, 3 failed"), std::string::npos) << r.out;
+  // The second array's task 1 is shard 4, with its output in logs/shard-4.42.*.
+  ASSERT_EQ(std::system(("SLURM_ARRAY_JOB_ID=42 SLURM_ARRAY_TASK_ID=1 bash " +
+                         Quote(dir + "/slurm/submit-1.sh") + " >/dev/null 2>&1")
+                            .c_str()),
+            0);
+  EXPECT_TRUE(fs::exists(dir + "/shards/shard-00004.jsonl"));
+  EXPECT_TRUE(fs::exists(dir + "/logs/shard-4.42.err"));
 }
 
 // A search campaign from the command line: generation after generation with run-shard, merged
