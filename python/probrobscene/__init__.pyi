@@ -105,3 +105,5 @@ def positions(scenes: Iterable[Scene], name: str) -> FloatArray: ...  # (n, 3)
 def dimensions(scenes: Iterable[Scene], name: str) -> FloatArray: ...  # (n, 3)
 def quaternions(scenes: Iterable[Scene], name: str) -> FloatArray: ...  # (n, 4)
 def yaw_pitch_roll(scenes: Iterable[Scene], name: str) -> FloatArray: ...  # (n, 3)
+
+from . import campaign as campaign  # campaigns on a Dask cluster (campaign.py is typed itself)
