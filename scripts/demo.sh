@@ -57,6 +57,8 @@ Next, try:
    $prs render $spec --view camera:Camera -o rgb.png   # what the robot's camera sees
    $prs search $spec --controller planted-1-permille --budget 1000 -o found.jsonl
                                 # search for failures instead of sampling blindly (docs/search.md)
+   $prs campaign init camp $spec --controller table-cube -n 2000 --shard-size 100 -s 1
+                                # a run cut into shards for Slurm or Dask (docs/cluster.md)
    docs/language.md (the language), docs/case_study.md (the failures and a fix), docs/cli.md
 
 demo: done in $((SECONDS - started)) s
