@@ -325,12 +325,4 @@ std::vector<std::string> MergeShards(const std::string& dir, const CampaignSpec&
   return lines;
 }
 
-std::vector<uint64_t> FindUnfinishedShards(const std::string& dir, const CampaignSpec& spec) {
-  std::vector<uint64_t> shards;
-  for (uint64_t k = 0; k < spec.shards(); ++k) {
-    if (CheckShard(dir, spec, k).state != ShardStatus::State::kDone) shards.push_back(k);
-  }
-  return shards;
-}
-
 }  // namespace prs::campaign

@@ -87,9 +87,11 @@ ShardStatus CheckShard(const std::string& dir, const CampaignSpec& spec, uint64_
 void WriteShard(const std::string& dir, const CampaignSpec& spec, uint64_t k,
                 const std::vector<std::string>& lines);
 
-/// Runs shard k: the episodes (kind "test", with `factory`) or scenes (kind "sample") of
-/// its range, on `threads` threads, and writes it. Throws CampaignError for a shard index out
-/// of range, and what harness::RunEpisodes / sampling::SampleBatch throw.
+/// Runs shard k: the episodes (kind "test", with `factory`), scenes (kind "sample") or searched
+/// episodes (kind "search", from its generation's plan: search_campaign.h) of its range, on
+/// `threads` threads, and writes it. Throws CampaignError for a shard index out of range or a
+/// search generation that cannot start yet, and what harness::RunEpisodes /
+/// sampling::SampleBatch throw.
 void RunShard(const std::string& dir, const CampaignSpec& spec,
               const lang::CompiledProgram& program, uint64_t k,
               const harness::ControllerFactory* factory, int threads,
@@ -99,8 +101,5 @@ void RunShard(const std::string& dir, const CampaignSpec& spec,
 /// are not done, unless `partial` (then those are skipped and listed in *skipped).
 std::vector<std::string> MergeShards(const std::string& dir, const CampaignSpec& spec, bool partial,
                                      std::vector<uint64_t>* skipped);
-
-/// The shards that are not done (missing, running or stopped, bad), in order.
-std::vector<uint64_t> FindUnfinishedShards(const std::string& dir, const CampaignSpec& spec);
 
 }  // namespace prs::campaign
