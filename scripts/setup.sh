@@ -38,6 +38,7 @@ packages=(
   python3-sklearn        # probrobscene.search(strategy="bo"): Gaussian processes
   python3-distributed    # probrobscene.campaign.run on a Dask cluster, tested on a LocalCluster
   munge slurmctld slurmd slurm-client  # a real single-node Slurm for tests/slurm/campaign_test.sh
+  procps                 # pgrep/pkill in that test (kills a task's prs as a dead node would)
   liburdfdom-dev libsdformat-dev  # prs export tests: URDF and SDF read by their own parsers
   python3                # prs test's example controller (examples/controllers/reach_check.py) in the tests
 )
