@@ -44,7 +44,7 @@ std::string Init(const std::string& dir, const std::string& path, const LoadOpti
     if (spec.kind == "sample") throw py::value_error("a search needs a controller or exec");
     spec.kind = "search";
     spec.strategy = strategy;
-    spec.batch = batch > 0 ? batch : static_cast<uint64_t>(search::DefaultBatch(count));
+    spec.batch = batch;  // 0: as prs search picks
   }
   spec.controller = controller;
   spec.exec = exec;
@@ -72,14 +72,12 @@ std::string Init(const std::string& dir, const std::string& path, const LoadOpti
   spec.shard_size = shard_size;
   spec.version = PRS_VERSION;
   return CallCampaign([&] {
-    if (spec.kind == "search") {
-      try {
-        search::SearchPlanner check(*program, campaign::MakeSearchOptions(spec));
-      } catch (const search::NothingToSearch& error) {
-        throw py::value_error(error.what());
-      }
+    try {
+      return campaign::InitCampaign(dir, *program, spec).id;
+    } catch (const lang::ScenarioError& error) {  // a search's trial attempts
+      RaiseScenarioError(error.diagnostic(), program->sources,
+                         lang::RenderDiagnostic(error.diagnostic(), program->sources));
     }
-    return campaign::InitCampaign(dir, *program, spec).id;
   });
 }
 
@@ -106,10 +104,10 @@ py::dict Status(const std::string& dir) {
     const campaign::CampaignSpec spec = campaign::ReadCampaign(dir);
     const campaign::SlurmQueue queue = campaign::QuerySlurmQueue(dir, spec);
     const std::vector<campaign::ShardState> states = campaign::DescribeShards(dir, spec, queue);
-    constexpr const char* kNames[] = {"done",    "queued", "running", "failed",
-                                      "missing", "bad",    "waiting"};
     py::dict counts;
-    for (const char* name : kNames) counts[name] = 0;
+    for (int kind = 0; kind < campaign::kShardStateKinds; ++kind) {
+      counts[campaign::ShardStateName(static_cast<campaign::ShardState::Kind>(kind))] = 0;
+    }
     py::list shards, to_run;
     for (uint64_t k = 0; k < states.size(); ++k) {
       // Not done and not left to Slurm: what probrobscene.campaign.run runs.
@@ -119,7 +117,7 @@ py::dict Status(const std::string& dir) {
           (task == queue.tasks.end() || !task->second.active())) {
         to_run.append(k);
       }
-      const char* name = kNames[static_cast<int>(states[k].kind)];
+      const char* name = campaign::ShardStateName(states[k].kind);
       counts[name] = counts[name].cast<int64_t>() + 1;
       py::dict shard;
       shard["shard"] = k;

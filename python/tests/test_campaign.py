@@ -116,6 +116,13 @@ def test_bad_campaigns_and_arguments_are_clear_errors(tmp_path):
     with pytest.raises(prs.ScenarioError):
         (tmp_path / "broken.prs").write_text("x = Cube on\n")
         campaign.init(tmp_path / "c1", tmp_path / "broken.prs", 10)
+    # An error that shows only when the program runs (a search's trial attempts): located.
+    (tmp_path / "runtime.prs").write_text("from model import *\nt = Table at (0, 0, 0.5)\n")
+    with pytest.raises(prs.ScenarioError) as error:
+        campaign.init(tmp_path / "c4", tmp_path / "runtime.prs", 10, controller="demo-reach",
+                      search="ce", search_path=[EXAMPLES])
+    assert (error.value.line, error.value.column) == (2, 14)
+    assert not (tmp_path / "c4").exists()
 
     camp = tmp_path / "camp"
     campaign.init(camp, TABLE_CUBE, 10, shard_size=4)

@@ -73,6 +73,13 @@ namespace {
 uint64_t CeilDiv(uint64_t a, uint64_t b) { return (a + b - 1) / b; }
 }  // namespace
 
+sampling::SampleOptions MakeSampleOptions(const CampaignSpec& spec) {
+  sampling::SampleOptions sample;
+  sample.max_attempts = spec.max_attempts;
+  sample.run.mode = spec.naive ? lang::SamplingMode::kNaive : lang::SamplingMode::kRegion;
+  return sample;
+}
+
 uint64_t CampaignSpec::shards() const {
   if (batch == 0) return CeilDiv(count, shard_size);
   return (count / batch) * CeilDiv(batch, shard_size) + CeilDiv(count % batch, shard_size);
@@ -119,8 +126,15 @@ CampaignSpec InitCampaign(const std::string& dir, const lang::CompiledProgram& p
   if (spec.count == 0 || spec.shard_size == 0) {
     throw CampaignError("a campaign needs at least one scene (-n) and a shard size of at least 1");
   }
-  if ((spec.kind == "search") != (spec.batch > 0)) {
-    throw CampaignError("a search campaign needs a generation size of at least 1 (and only it)");
+  if (spec.kind == "search") {
+    if (spec.batch == 0) spec.batch = static_cast<uint64_t>(search::DefaultBatch(spec.count));
+    try {
+      search::SearchPlanner check(program, MakeSearchOptions(spec));
+    } catch (const search::NothingToSearch& error) {
+      throw CampaignError(error.what());
+    }
+  } else if (spec.batch > 0) {
+    throw CampaignError("a generation size is for search campaigns only");
   }
   std::error_code error;
   if (fs::exists(dir, error) && !fs::is_empty(dir, error)) {
@@ -268,9 +282,7 @@ void RunShard(const std::string& dir, const CampaignSpec& spec,
     throw CampaignError(
         fmt::format("there is no shard {}: the campaign has shards 0 to {}", k, spec.shards() - 1));
   }
-  sampling::SampleOptions sample;
-  sample.max_attempts = spec.max_attempts;
-  sample.run.mode = spec.naive ? lang::SamplingMode::kNaive : lang::SamplingMode::kRegion;
+  const sampling::SampleOptions sample = MakeSampleOptions(spec);
   std::vector<std::string> lines;
   if (spec.kind != "sample" && !factory) throw std::invalid_argument("RunShard: no controller");
   if (spec.kind == "search") {

@@ -60,9 +60,14 @@ class CampaignError : public std::runtime_error {
 
 /// Creates DIR (which must not exist or be empty): copies every source file of `program` into
 /// DIR/spec/ (flat; two files of one name are an error), then writes DIR/campaign.json
-/// atomically. Fills spec.id, spec.main_file and spec.spec_hash. Throws CampaignError.
+/// atomically. Fills spec.id, spec.main_file, spec.spec_hash and, for a search with batch 0,
+/// the batch `prs search` would pick. Throws CampaignError (also for a search of a program
+/// that draws nothing at random, or an unknown strategy).
 CampaignSpec InitCampaign(const std::string& dir, const lang::CompiledProgram& program,
                           CampaignSpec spec);
+
+/// The sampling options the campaign's shards run with (max attempts, region or naive mode).
+sampling::SampleOptions MakeSampleOptions(const CampaignSpec& spec);
 
 /// Reads DIR/campaign.json. Throws CampaignError for a missing or malformed file.
 CampaignSpec ReadCampaign(const std::string& dir);

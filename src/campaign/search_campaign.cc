@@ -22,9 +22,7 @@ search::SearchOptions MakeSearchOptions(const CampaignSpec& spec) {
   }
   options.budget = static_cast<int64_t>(spec.count);
   options.batch = static_cast<int64_t>(spec.batch);
-  options.run.sample.max_attempts = spec.max_attempts;
-  options.run.sample.run.mode =
-      spec.naive ? lang::SamplingMode::kNaive : lang::SamplingMode::kRegion;
+  options.run.sample = MakeSampleOptions(spec);
   options.run.seed = spec.seed;
   return options;
 }

@@ -63,6 +63,19 @@ std::string ReadLastLogLine(const std::string& path) {
   return last;
 }
 
+// squeue's `%F|%K|%T|%r` lines as fields; lines of fewer than 3 fields are dropped.
+std::vector<std::vector<std::string>> SplitSqueueLines(const std::string& text) {
+  std::vector<std::vector<std::string>> rows;
+  std::stringstream lines(text);
+  for (std::string line; std::getline(lines, line);) {
+    std::vector<std::string> fields;
+    std::stringstream parts(Trim(line));
+    for (std::string field; std::getline(parts, field, '|');) fields.push_back(field);
+    if (fields.size() >= 3) rows.push_back(std::move(fields));
+  }
+  return rows;
+}
+
 std::string SubmissionPath(const std::string& dir, int number, const char* extension) {
   return fmt::format("{}/slurm/submit-{}.{}", dir, number, extension);
 }
@@ -270,12 +283,7 @@ bool QueuedTask::active() const {
 std::map<uint64_t, QueuedTask> ParseSqueueLines(const std::string& text,
                                                 const std::map<std::string, uint64_t>& offsets) {
   std::map<uint64_t, QueuedTask> tasks;
-  std::stringstream lines(text);
-  for (std::string line; std::getline(lines, line);) {
-    std::vector<std::string> fields;
-    std::stringstream parts(Trim(line));
-    for (std::string field; std::getline(parts, field, '|');) fields.push_back(field);
-    if (fields.size() < 3) continue;
+  for (const std::vector<std::string>& fields : SplitSqueueLines(text)) {
     const auto job = offsets.find(fields[0]);
     if (job == offsets.end()) continue;
     const std::string& index = fields[1];
@@ -319,15 +327,10 @@ SlurmQueue QuerySlurmQueue(const std::string& dir, const CampaignSpec& spec) {
   queue.available = true;
   queue.tasks = ParseSqueueLines(result.output, offsets);
   const char* self = std::getenv("SLURM_JOB_ID");
-  std::stringstream lines(result.output);
-  for (std::string line; std::getline(lines, line);) {
-    std::stringstream parts(Trim(line));
-    std::string id, index, state;
-    std::getline(parts, id, '|');
-    std::getline(parts, index, '|');
-    std::getline(parts, state, '|');
+  for (const std::vector<std::string>& fields : SplitSqueueLines(result.output)) {
+    const std::string& id = fields[0];
     if (std::find(next_ids.begin(), next_ids.end(), id) != next_ids.end() &&
-        QueuedTask{id, state, "", 0}.active() && !(self && id == self)) {
+        QueuedTask{id, fields[2], "", 0}.active() && !(self && id == self)) {
       queue.next_steps.push_back(id);
     }
   }
@@ -400,6 +403,12 @@ std::vector<ShardState> DescribeShards(const std::string& dir, const CampaignSpe
     states.push_back(std::move(state));
   }
   return states;
+}
+
+const char* ShardStateName(ShardState::Kind kind) {
+  constexpr const char* kNames[kShardStateKinds] = {"done",    "queued", "running", "failed",
+                                                    "missing", "bad",    "waiting"};
+  return kNames[static_cast<int>(kind)];
 }
 
 std::vector<uint64_t> FindShardsToResubmit(const std::vector<ShardState>& states) {

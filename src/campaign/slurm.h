@@ -128,6 +128,10 @@ struct ShardState {
   std::string why;  // what the files, squeue and the task's log say
 };
 
+/// "done", "queued", "running", "failed", "missing", "bad", "waiting": what status prints.
+const char* ShardStateName(ShardState::Kind kind);
+constexpr int kShardStateKinds = 7;
+
 /// Every shard's state. `queue` may be unavailable (then running/failed come from files only).
 std::vector<ShardState> DescribeShards(const std::string& dir, const CampaignSpec& spec,
                                        const SlurmQueue& queue);

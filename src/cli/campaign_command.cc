@@ -63,8 +63,7 @@ int RunInit(const CampaignArgs& args) {
     }
     spec.kind = "search";
     spec.strategy = args.strategy;
-    spec.batch =
-        static_cast<uint64_t>(args.batch > 0 ? args.batch : search::DefaultBatch(args.count));
+    spec.batch = static_cast<uint64_t>(args.batch);  // 0: as prs search picks
   } else if (args.batch > 0) {
     PrintError("--batch is the generation size of a search campaign: give --search too");
     return kExitUsage;
@@ -85,12 +84,10 @@ int RunInit(const CampaignArgs& args) {
   spec.timeout_s = args.controller.timeout_s;
   spec.version = PRS_VERSION;
   try {
-    if (spec.kind == "search")
-      search::SearchPlanner check(*program, campaign::MakeSearchOptions(spec));
     spec = campaign::InitCampaign(args.dir, *program, spec);
-  } catch (const search::NothingToSearch& error) {
-    PrintError(error.what());
-    return kExitScenarioError;
+  } catch (const lang::ScenarioError& error) {
+    // A search's trial attempts (its coordinates) met a run-time error: located, as prs search.
+    return ReportScenarioError(error, program->sources);
   } catch (const campaign::CampaignError& error) {
     PrintError(error.what());
     return kExitScenarioError;
@@ -162,19 +159,21 @@ int RunStatus(const CampaignArgs& args) {
     const std::vector<campaign::ShardState> states =
         campaign::DescribeShards(args.dir, spec, queue);
     using Kind = campaign::ShardState::Kind;
-    constexpr const char* kNames[] = {"done",    "queued", "running", "failed",
-                                      "missing", "bad",    "waiting"};
-    int64_t counts[7] = {};
+    int64_t counts[campaign::kShardStateKinds] = {};
     for (uint64_t k = 0; k < states.size(); ++k) {
       const int kind = static_cast<int>(states[k].kind);
       if (++counts[kind] <= 20 && states[k].kind != Kind::kDone &&
           states[k].kind != Kind::kQueued && !states[k].why.empty()) {
-        std::cout << fmt::format("shard {}: {}: {}\n", k, kNames[kind], states[k].why);
+        std::cout << fmt::format("shard {}: {}: {}\n", k, campaign::ShardStateName(states[k].kind),
+                                 states[k].why);
       }
     }
-    for (int kind = 2; kind < 6; ++kind) {
-      if (counts[kind] > 20)
-        std::cout << fmt::format("... and {} more {}\n", counts[kind] - 20, kNames[kind]);
+    for (Kind kind : {Kind::kRunning, Kind::kFailed, Kind::kMissing, Kind::kBad}) {
+      const int64_t count = counts[static_cast<int>(kind)];
+      if (count > 20) {
+        std::cout << fmt::format("... and {} more {}\n", count - 20,
+                                 campaign::ShardStateName(kind));
+      }
     }
     std::cout << fmt::format(
         "{}: {} of {} done, {} queued, {} running, {} failed, {} missing, {} bad", args.dir,

@@ -212,6 +212,15 @@ TEST_F(PrsTest, CampaignSearchRunsGenerationAfterGenerationAsPrsSearch) {
   r = Run({"campaign", "init", dir, Example("table_cube.prs"), "-n", "50", "--search", "bo",
            "--controller", "planted-1-percent"});
   EXPECT_EQ(r.exit_code, 2);
+  // A program that fails when it runs (the search's trial attempts): located, nothing made.
+  const std::string broken = Write("broken.prs", "from model import *\nt = Table at (0, 0, 0.5)\n");
+  r = Run({"campaign", "init", dir, broken, "-I", (RepoRoot() / "examples").string(), "-n", "10",
+           "--search", "ce", "--controller", "demo-reach"});
+  EXPECT_EQ(r.exit_code, 1);
+  EXPECT_NE(r.err.find("broken.prs:2:14: error: the position must be a vector"), std::string::npos)
+      << r.err;
+  EXPECT_NE(r.err.find("^~~"), std::string::npos) << r.err;
+  EXPECT_FALSE(fs::exists(dir));
   r = Run({"campaign", "init", dir, Example("table_cube.prs"), "--controller", "planted-1-percent",
            "-n", "50", "--search", "anneal", "--batch", "20", "--shard-size", "8", "-s", "6"});
   ASSERT_EQ(r.exit_code, 0) << r.err;
