@@ -18,6 +18,9 @@ function(prs_add_test name)
   add_executable(${name} ${ARG_SOURCES})
   prs_target_defaults(${name})
   target_link_libraries(${name} PRIVATE ${ARG_LIBS} GTest::gtest GTest::gtest_main)
+  # Reachable sets computed by one test are read from this build's own cache by the others
+  # (and never from the user's ~/.cache): see lang::DefaultCacheDir.
   gtest_discover_tests(${name} DISCOVERY_TIMEOUT 60
-                       PROPERTIES ENVIRONMENT "PRS_SOURCE_DIR=${PROJECT_SOURCE_DIR}")
+                       PROPERTIES ENVIRONMENT
+                       "PRS_SOURCE_DIR=${PROJECT_SOURCE_DIR};PRS_CACHE_DIR=${PROJECT_BINARY_DIR}/test_reach_cache")
 endfunction()

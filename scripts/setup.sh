@@ -25,6 +25,9 @@ packages=(
   libegl-dev libegl-mesa0 libgl1-mesa-dri  # prs render: MuJoCo's renderer on EGL with
                          # Mesa's software rasteriser (llvmpipe), no GPU or display
   libpng-dev             # prs render: PNG files
+  liburdfdom-dev libconsole-bridge-dev libtinyxml-dev  # arms from URDF files (src/kinematics:
+                         # `reachable by` in the language); urdfdom logs through console_bridge
+                         # and parses with TinyXML, both included directly
 )
 # What the tests, benchmarks, fuzzing and the Python package add (scripts/test.sh).
 [[ $set_name == all ]] && packages+=(
@@ -39,7 +42,7 @@ packages=(
   python3-distributed    # probrobscene.campaign.run on a Dask cluster, tested on a LocalCluster
   munge slurmctld slurmd slurm-client  # a real single-node Slurm for tests/slurm/campaign_test.sh
   procps                 # pgrep/pkill in that test (kills a task's prs as a dead node would)
-  liburdfdom-dev libsdformat-dev  # prs export tests: URDF and SDF read by their own parsers
+  libsdformat-dev        # prs export tests: SDF read by its own parser (URDF by urdfdom, above)
   python3                # prs test's example controller (examples/controllers/reach_check.py) in the tests
 )
 # prs view bundles three.js with npm at build time; keep a Node.js that is already installed

@@ -84,4 +84,27 @@ bool IsPointInBox(const OrientedBox& box, const Eigen::Vector3d& p_W, double tol
   return (p_B.cwiseAbs().array() <= (box.half_extents.array() + tolerance)).all();
 }
 
+bool DoesSegmentCrossBox(const OrientedBox& box, const Eigen::Vector3d& a_W,
+                         const Eigen::Vector3d& b_W, double tolerance) {
+  // Slabs in the box's frame (Kay and Kajiya): the part of the segment inside all three slabs
+  // of the box shrunk by the tolerance, as an interval of the segment's parameter t in [0, 1].
+  const Eigen::Vector3d a = box.R_WB.transpose() * (a_W - box.p_center);
+  const Eigen::Vector3d d = box.R_WB.transpose() * (b_W - a_W);
+  double t_in = 0, t_out = 1;
+  for (int i = 0; i < 3; ++i) {
+    const double half = box.half_extents[i] - tolerance;
+    if (half <= 0) return false;  // thinner than the tolerance: nothing to cross
+    if (std::abs(d[i]) < 1e-15) {
+      if (std::abs(a[i]) >= half) return false;
+      continue;
+    }
+    double t0 = (-half - a[i]) / d[i], t1 = (half - a[i]) / d[i];
+    if (t0 > t1) std::swap(t0, t1);
+    t_in = std::max(t_in, t0);
+    t_out = std::min(t_out, t1);
+    if (t_in >= t_out) return false;
+  }
+  return true;
+}
+
 }  // namespace prs::geometry

@@ -45,4 +45,10 @@ double CalcBoxSupport(const Eigen::Matrix3d& R_WB, const Eigen::Vector3d& half_e
 /// True when p_W lies in the box grown by `tolerance` along each local axis.
 bool IsPointInBox(const OrientedBox& box, const Eigen::Vector3d& p_W, double tolerance = 1e-9);
 
+/// True when the segment from a_W to b_W passes through the interior of the box shrunk by
+/// `tolerance` (metres) on every side, so a segment that only touches or grazes the box within
+/// the tolerance does not cross it. A line of sight is blocked by a box it crosses.
+bool DoesSegmentCrossBox(const OrientedBox& box, const Eigen::Vector3d& a_W,
+                         const Eigen::Vector3d& b_W, double tolerance = kContactTolerance);
+
 }  // namespace prs::geometry

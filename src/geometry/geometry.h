@@ -1,5 +1,5 @@
-// The geometry library's public umbrella header: RNG, rotations, boxes, convex regions and
-// their exact samplers (namespace prs::geometry; depends on Eigen only).
+// The geometry library's public umbrella header: RNG, rotations, boxes, convex regions, unions
+// of convex pieces and their exact samplers (namespace prs::geometry; depends on Eigen only).
 #pragma once
 
 #include "geometry/box.h"
@@ -7,3 +7,4 @@
 #include "geometry/region.h"
 #include "geometry/rotation.h"
 #include "geometry/sampling.h"
+#include "geometry/union.h"

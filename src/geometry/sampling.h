@@ -44,13 +44,20 @@ class RegionSampler {
   double measure() const { return measure_; }
   bool measure_is_exact() const { return measure_is_exact_; }
   int dimension() const { return dimension_; }
+  /// One uniform point of the polytope part, ignoring the balls: for samplers of unions, which
+  /// must restart a whole draw (piece and point) when a ball rejects the point (union.h).
+  Eigen::Vector3d SamplePolytopePart(Rng& rng) const { return SamplePolytope(rng); }
+  /// The point of the polytope part at `u`, as SampleAt maps it, ignoring the balls.
+  Eigen::Vector3d MapPolytopePart(const double* u) const { return MapPolytope(u); }
+  /// Whether p lies in every ball of the region (true when it has none).
+  bool IsInBalls(const Eigen::Vector3d& p) const;
+  bool has_balls() const { return !balls_.empty(); }
   int num_simplices() const { return static_cast<int>(probability_.size()); }
 
  private:
   Eigen::Vector3d SamplePolytope(Rng& rng) const;
   Eigen::Vector3d MapPolytope(const double* u) const;
   Eigen::Vector3d MapPolygon(const double* u) const;
-  bool IsInBalls(const Eigen::Vector3d& p) const;
   int PickSimplex(Rng& rng) const;
   void BuildAliasTable(const std::vector<double>& weights);
 

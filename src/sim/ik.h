@@ -1,6 +1,6 @@
-// Inverse kinematics for one Panda arm in a MuJoCo model: damped least squares on MuJoCo's
-// Jacobian of the tool centre point, within the joint limits. The controller's only way to
-// move the arm to a pose it computed (it never reads the true object poses).
+// One Panda arm in a MuJoCo model: where its joints, servos and tool centre point live, and
+// setting and reading its joints. Inverse kinematics is kinematics/ik.h's, on the arm's chain
+// (motion.h's MoveTcpTo), independent of MuJoCo.
 #pragma once
 
 #include <Eigen/Core>
@@ -32,30 +32,5 @@ PandaJointVector GetArmJoints(const mjData& data, const ArmIndex& arm);
 
 /// X_WTcp: the tool centre point's world pose in `data` (after kinematics).
 Eigen::Isometry3d GetTcpPose(const mjData& data, const ArmIndex& arm);
-
-struct IkOptions {
-  int max_iterations = 300;
-  double damping = 0.05;                  // λ of (J Jᵀ + λ² I)
-  double position_tolerance_m = 0.002;
-  double rotation_tolerance_rad = 0.02;
-  double rotation_weight_m = 0.2;         // metres of position error worth one radian
-  double max_step_rad = 0.2;              // per joint per iteration
-};
-
-struct IkResult {
-  PandaJointVector q_rad{};
-  double position_error_m = 0;
-  double rotation_error_rad = 0;
-  int iterations = 0;
-  bool converged = false;
-};
-
-/// Joint angles that put the tool centre point at X_WTarget, starting from q_start and staying
-/// within the joint limits. `scratch` is overwritten (pass a copy of the live state's data).
-/// converged is false when the tolerances were not met (the target is out of reach, or too
-/// close to the base): the caller reports "no path".
-IkResult SolveArmIk(const mjModel& model, mjData& scratch, const ArmIndex& arm,
-                    const Eigen::Isometry3d& X_WTarget, const PandaJointVector& q_start,
-                    const IkOptions& options = {});
 
 }  // namespace prs::sim

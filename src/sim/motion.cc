@@ -37,12 +37,16 @@ void MoveJointsTo(World& world, const WorldArm& arm, const PandaJointVector& q_g
   SimulateFor(model, data, arms, kSettle_s);
 }
 
-IkResult MoveTcpTo(World& world, const WorldArm& arm, const Eigen::Isometry3d& X_WTarget, double duration_s) {
-  mj_copyData(world.ik_scratch.get(), world.model.get(), world.data.get());
+kinematics::IkResult MoveTcpTo(World& world, const WorldArm& arm,
+                               const Eigen::Isometry3d& X_WTarget, double duration_s) {
+  static const kinematics::Chain panda = kinematics::MakePandaChain();
   PandaJointVector q_now;
   for (int i = 0; i < kPandaJoints; ++i) q_now[i] = world.data->ctrl[arm.index.actuator[i]];
-  IkResult ik = SolveArmIk(*world.model, *world.ik_scratch, arm.index, X_WTarget, q_now);
-  if (ik.converged) MoveJointsTo(world, arm, ik.q_rad, duration_s);
+  // The defaults are the tolerances and steps the simulator has always used: 2 mm, 0.02 rad,
+  // damping 0.05, 300 iterations, 0.2 rad per joint per step.
+  const kinematics::IkTarget target = kinematics::MakePoseTarget(arm.X_WBase.inverse() * X_WTarget);
+  const kinematics::IkResult ik = kinematics::SolveIk(panda, target, kinematics::ToVector(q_now));
+  if (ik.converged) MoveJointsTo(world, arm, kinematics::ToPandaJoints(ik.q), duration_s);
   return ik;
 }
 

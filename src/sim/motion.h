@@ -3,6 +3,7 @@
 // close the gripper. Every motion simulates the whole world, so contacts happen as they would.
 #pragma once
 
+#include "kinematics/ik.h"
 #include "sim/world.h"
 
 namespace prs::sim {
@@ -10,10 +11,13 @@ namespace prs::sim {
 /// The tool pointing straight down, fingers closing along world x rotated by `yaw_rad`.
 Eigen::Matrix3d CalcDownwardGrasp(double yaw_rad);
 
-/// Solves IK for X_WTarget from the arm's current joints; when it converges, moves there over
-/// `duration_s` (smooth joint interpolation) and lets the arm settle for 0.2 s. Returns the IK
-/// result: converged false means the arm did not move (no path to the target).
-IkResult MoveTcpTo(World& world, const WorldArm& arm, const Eigen::Isometry3d& X_WTarget, double duration_s);
+/// Solves IK for X_WTarget (kinematics::SolveIk on the Panda's chain, in the arm's base frame:
+/// X_BaseTarget = X_WBase⁻¹·X_WTarget) from the arm's current servo targets, to 2 mm and
+/// 0.02 rad; when it converges, moves there over `duration_s` (smooth joint interpolation) and
+/// lets the arm settle for 0.2 s. Returns the IK result: converged false means the arm did not
+/// move (no path to the target).
+kinematics::IkResult MoveTcpTo(World& world, const WorldArm& arm,
+                               const Eigen::Isometry3d& X_WTarget, double duration_s);
 
 /// Moves the arm's joints to q over `duration_s` and settles.
 void MoveJointsTo(World& world, const WorldArm& arm, const PandaJointVector& q_rad, double duration_s);

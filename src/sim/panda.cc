@@ -1,4 +1,4 @@
-// The Panda arm's kinematics and its MJCF body tree (see panda.h).
+// The Panda arm's MJCF body tree (see panda.h).
 #include "sim/panda.h"
 
 #include <fmt/format.h>
@@ -55,20 +55,6 @@ std::string WriteHand(const PandaNames& n) {
 
 }  // namespace
 
-const std::array<PandaDhRow, kPandaJoints + 1> kPandaDh = {{
-    {0, 0.333, 0},
-    {0, 0, -kPi / 2},
-    {0, 0.316, kPi / 2},
-    {0.0825, 0, kPi / 2},
-    {-0.0825, 0.384, -kPi / 2},
-    {0, 0, kPi / 2},
-    {0.088, 0, kPi / 2},
-    {0, 0.107, 0},  // flange
-}};
-const PandaJointVector kPandaLowerLimit_rad = {-2.8973, -1.7628, -2.8973, -3.0718, -2.8973, -0.0175, -2.8973};
-const PandaJointVector kPandaUpperLimit_rad = {2.8973, 1.7628, 2.8973, -0.0698, 2.8973, 3.7525, 2.8973};
-const PandaJointVector kPandaReadyPose_rad = {0, -kPi / 4, 0, -3 * kPi / 4, 0, kPi / 2, kPi / 4};
-
 std::string WritePandaBody(const PandaNames& n, const Eigen::Vector3d& p_WBase,
                            const Eigen::Quaterniond& R_WBase) {
   std::string xml = fmt::format(R"(<body name="{}" pos="{}" quat="{}">)", n.base(),
@@ -110,19 +96,6 @@ std::string WritePandaActuators(const PandaNames& n) {
                      R"(forcerange="-70 70" forcelimited="true"/>)",
                      n.gripper_actuator(), n.finger_joint(0), kPandaFingerTravel_m);
   return xml;
-}
-
-Eigen::Isometry3d CalcPandaTcpPose(const PandaJointVector& q_rad) {
-  Eigen::Isometry3d X = Eigen::Isometry3d::Identity();
-  for (int i = 0; i <= kPandaJoints; ++i) {
-    const PandaDhRow& row = kPandaDh[i];
-    const double q = i < kPandaJoints ? q_rad[i] : 0.0;
-    X = X * Eigen::AngleAxisd(row.alpha_rad, Eigen::Vector3d::UnitX()) *
-        Eigen::Translation3d(row.a_m, 0, 0) * Eigen::AngleAxisd(q, Eigen::Vector3d::UnitZ()) *
-        Eigen::Translation3d(0, 0, row.d_m);
-  }
-  return X * Eigen::AngleAxisd(-kPi / 4, Eigen::Vector3d::UnitZ()) *
-         Eigen::Translation3d(0, 0, kPandaFlangeToTcp_m);
 }
 
 }  // namespace prs::sim

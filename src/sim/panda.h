@@ -1,34 +1,26 @@
-// The Franka Emika Panda arm for the simulated case study: its published kinematics (modified
-// Denavit-Hartenberg parameters, Craig's convention, and joint limits from Franka's robot
-// documentation), written as an MJCF body tree built from simple shapes, with a two-finger
-// parallel gripper that grasps by friction.
+// The Franka Emika Panda arm for the simulated case study, written as an MJCF body tree built
+// from simple shapes, with a two-finger parallel gripper that grasps by friction. Its
+// kinematics (DH table, limits, tool centre point) are kinematics/panda.h's.
 #pragma once
 
 #include <Eigen/Core>
 #include <Eigen/Geometry>
-#include <array>
 #include <string>
+
+#include "kinematics/panda.h"
 
 namespace prs::sim {
 
-inline constexpr int kPandaJoints = 7;
-using PandaJointVector = std::array<double, kPandaJoints>;
-
-/// One row of the modified DH table: frame i from frame i-1 is RotX(alpha) TransX(a) RotZ(q_i)
-/// TransZ(d); the last row is the flange (no joint).
-struct PandaDhRow {
-  double a_m, d_m, alpha_rad;
-};
-extern const std::array<PandaDhRow, kPandaJoints + 1> kPandaDh;
-extern const PandaJointVector kPandaLowerLimit_rad;
-extern const PandaJointVector kPandaUpperLimit_rad;
-/// A comfortable pose above the table: elbow up, hand pointing down.
-extern const PandaJointVector kPandaReadyPose_rad;
-
-/// Tool centre point (between the fingertips) from the flange, along the flange's z axis.
-inline constexpr double kPandaFlangeToTcp_m = 0.1034;
-/// Each finger's travel from closed; the gripper opens to twice this.
-inline constexpr double kPandaFingerTravel_m = 0.04;
+using kinematics::CalcPandaTcpPose;
+using kinematics::kPandaDh;
+using kinematics::kPandaFingerTravel_m;
+using kinematics::kPandaFlangeToTcp_m;
+using kinematics::kPandaJoints;
+using kinematics::kPandaLowerLimit_rad;
+using kinematics::kPandaReadyPose_rad;
+using kinematics::kPandaUpperLimit_rad;
+using kinematics::PandaDhRow;
+using kinematics::PandaJointVector;
 
 /// Names of one arm's elements in the model, all starting with the arm's prefix ("left_").
 struct PandaNames {
@@ -52,9 +44,5 @@ std::string WritePandaEqualities(const PandaNames& names);
 /// The <actuator> entries: a position servo per joint and one for the gripper opening (metres
 /// per finger, 0 closed to kPandaFingerTravel_m open).
 std::string WritePandaActuators(const PandaNames& names);
-
-/// X_BaseTcp: the tool centre point's pose in the base frame at joint angles q, from the DH
-/// table alone (independent of MuJoCo).
-Eigen::Isometry3d CalcPandaTcpPose(const PandaJointVector& q_rad);
 
 }  // namespace prs::sim

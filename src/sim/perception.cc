@@ -1,4 +1,4 @@
-// Pinhole camera, blob detection and back-projection (see perception.h).
+// MuJoCo cameras as pinhole cameras, and blob detection (see perception.h).
 #include "sim/perception.h"
 
 #include <algorithm>
@@ -6,8 +6,6 @@
 #include <vector>
 
 namespace prs::sim {
-
-double PinholeCamera::focal_px() const { return 0.5 * height / std::tan(fovy_rad / 2); }
 
 PinholeCamera GetMujocoCamera(const mjModel& model, const mjData& data, int camera_id, int width,
                               int height) {
@@ -19,19 +17,6 @@ PinholeCamera GetMujocoCamera(const mjModel& model, const mjData& data, int came
   camera.width = width;
   camera.height = height;
   return camera;
-}
-
-Eigen::Vector3d BackProject(const PinholeCamera& camera, const Eigen::Vector2d& pixel, double depth_m) {
-  const double f = camera.focal_px();
-  const Eigen::Vector3d p_C((pixel.x() - camera.width / 2.0) / f * depth_m,
-                            (camera.height / 2.0 - pixel.y()) / f * depth_m, -depth_m);
-  return camera.X_WC * p_C;
-}
-
-Eigen::Vector3d Project(const PinholeCamera& camera, const Eigen::Vector3d& p_W) {
-  const Eigen::Vector3d p_C = camera.X_WC.inverse() * p_W;
-  const double depth = -p_C.z(), f = camera.focal_px();
-  return {camera.width / 2.0 + f * p_C.x() / depth, camera.height / 2.0 - f * p_C.y() / depth, depth};
 }
 
 bool IsBluePixel(uint8_t r, uint8_t g, uint8_t b) {

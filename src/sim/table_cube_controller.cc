@@ -100,7 +100,7 @@ struct TableCubeController::Episode {
     Eigen::Isometry3d X = Eigen::Isometry3d::Identity();
     X.translation() = p_W;
     X.linear() = CalcDownwardGrasp(yaw);
-    const IkResult ik = MoveTcpTo(world, arm, X, duration_s);
+    const kinematics::IkResult ik = MoveTcpTo(world, arm, X, duration_s);
     if (!ik.converged) {
       FailAfterSighting("no-path", fmt::format("{} found no joint angles to {} ({:.1f} cm short)",
                                                arm.robot_name, what, 100 * ik.position_error_m));

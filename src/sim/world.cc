@@ -3,17 +3,15 @@
 
 #include <fmt/format.h>
 
-#include <numbers>
 #include <stdexcept>
 
+#include "kinematics/mount.h"
 #include "sim/control.h"
 #include "sim/mjcf_text.h"
 
 namespace prs::sim {
 
 namespace {
-
-constexpr double kPi = std::numbers::pi;
 
 using internal::FormatQuat;
 using internal::FormatVector;
@@ -76,13 +74,7 @@ const exporting::Body* World::FindFirst(const std::string& class_name) const {
 }
 
 Eigen::Isometry3d CalcArmMount(const exporting::Body& robot) {
-  Eigen::Isometry3d X = Eigen::Isometry3d::Identity();
-  const Eigen::Matrix3d R_WO = robot.R_WO.toRotationMatrix();
-  // The bottom face: a Robot object stands `on` its support, and its box is the whole robot
-  // (a Panda is about 1 m tall), so the arm's base stands where the box does.
-  X.translation() = robot.p_WO - R_WO.col(2) * (robot.size.z() / 2);
-  X.linear() = R_WO * Eigen::AngleAxisd(kPi / 2, Eigen::Vector3d::UnitZ()).toRotationMatrix();
-  return X;
+  return kinematics::CalcArmMount(robot.p_WO, robot.R_WO.toRotationMatrix(), robot.size);
 }
 
 std::string WriteWorldMjcf(const exporting::ExportScene& scene) {
@@ -110,7 +102,6 @@ World BuildWorld(exporting::ExportScene scene) {
   world.xml = WriteWorldMjcf(scene);
   world.model = LoadModelFromXml(world.xml);
   world.data = MakeData(*world.model);
-  world.ik_scratch = MakeData(*world.model);
   for (const exporting::Body& b : scene.bodies) {
     if (b.class_name != "Robot") continue;
     WorldArm arm{b.name, ArmNames(b), CalcArmMount(b), {}};

@@ -28,7 +28,6 @@ struct World {
   exporting::ExportScene scene;
   ModelPtr model;
   DataPtr data;
-  DataPtr ik_scratch;  // inverse kinematics' working state, made once per world
   std::vector<WorldArm> arms;
   std::string xml;  // the MJCF the model was compiled from, for debugging and --save-failures
 
@@ -39,10 +38,11 @@ struct World {
   const exporting::Body* FindFirst(const std::string& class_name) const;
 };
 
-/// X_WBase of the arm a Robot object stands for: at the centre of the object's bottom face
-/// (on whatever the object is on), facing where the object faces (the arm's forward x along
-/// the object's forward y, its z along the object's up). Independent of the box's height: the
-/// box is the robot's bounding volume, 0.1 m or 1.026 m tall alike.
+/// X_WBase of the arm a Robot object stands for (kinematics::CalcArmMount, the language's
+/// convention too): at the centre of the object's bottom face (on whatever the object is on),
+/// facing where the object faces (the arm's forward x along the object's forward y, its z along
+/// the object's up). Independent of the box's height: the box is the robot's bounding volume,
+/// 0.1 m or 1.026 m tall alike.
 Eigen::Isometry3d CalcArmMount(const exporting::Body& robot);
 
 /// The world's MJCF: export's MuJoCo document with the arms, tray walls and their actuators.

@@ -175,5 +175,43 @@ TEST(BoxTest, PointInBox) {
   EXPECT_FALSE(IsPointInBox(box, {1, 2.5 + 5e-9, 3}));
 }
 
+TEST(BoxTest, SegmentCrossingMatchesDenseSamplingAlongTheSegment) {
+  Rng rng(8);
+  int crossing = 0, mismatches = 0;
+  for (int i = 0; i < 2000; ++i) {
+    const OrientedBox box = RandomBox(rng, RandomVector(rng, -0.3, 0.3));
+    const Eigen::Vector3d a = RandomVector(rng, -1.5, 1.5), b = RandomVector(rng, -1.5, 1.5);
+    // Dense points along the segment, inside the box shrunk by the tolerance.
+    bool inside = false;
+    for (int k = 0; k <= 4000 && !inside; ++k) {
+      inside = IsPointInBox(box, a + (b - a) * (k / 4000.0), -kContactTolerance);
+    }
+    const bool crosses = DoesSegmentCrossBox(box, a, b);
+    crossing += crosses;
+    // Sampling can miss a corner clip shorter than the sample spacing, so only one direction
+    // is exact; the counts below show the two agree almost always.
+    if (inside) {
+      ASSERT_TRUE(crosses) << "segment " << a.transpose() << " to " << b.transpose();
+    }
+    mismatches += crosses != inside;
+  }
+  EXPECT_LE(mismatches, 5);
+  EXPECT_GT(crossing, 100);  // both answers occur often enough to be tested
+  EXPECT_LT(crossing, 1900);
+}
+
+TEST(BoxTest, SegmentsThatTouchOrEndOutsideDoNotCross) {
+  OrientedBox box;
+  box.half_extents = {0.5, 0.5, 0.5};
+  // Grazing a face, along an edge, ending at the face, and stopping short of it.
+  EXPECT_FALSE(DoesSegmentCrossBox(box, {-1, 0, 0.5}, {1, 0, 0.5}));
+  EXPECT_FALSE(DoesSegmentCrossBox(box, {-1, 0.5, 0.5}, {1, 0.5, 0.5}));
+  EXPECT_FALSE(DoesSegmentCrossBox(box, {0, 0, 2}, {0, 0, 0.5}));
+  EXPECT_FALSE(DoesSegmentCrossBox(box, {0, 0, 2}, {0, 0, 0.6}));
+  EXPECT_TRUE(DoesSegmentCrossBox(box, {0, 0, 2}, {0, 0, 0.49}));
+  EXPECT_TRUE(DoesSegmentCrossBox(box, {-1, 0.2, 0.3}, {1, -0.2, 0.1}));
+  EXPECT_TRUE(DoesSegmentCrossBox(box, {0, 0, 0}, {0.1, 0, 0}));  // wholly inside
+}
+
 }  // namespace
 }  // namespace prs::geometry

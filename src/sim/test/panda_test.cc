@@ -1,12 +1,13 @@
-// The simulated Panda: its MuJoCo body tree matches the published kinematics, inverse
-// kinematics reaches what is reachable and reports what is not, and the servos with gravity
-// compensation hold a pose.
+// The simulated Panda: its MuJoCo body tree matches the published kinematics (kinematics/
+// panda.h), the kinematics stage's inverse kinematics puts MuJoCo's tool where it was asked and
+// reports what is out of reach, and the servos with gravity compensation hold a pose.
 #include <fmt/format.h>
 #include <gtest/gtest.h>
 
 #include <numbers>
 
 #include "geometry/random.h"
+#include "kinematics/ik.h"
 #include "sim/control.h"
 #include "sim/ik.h"
 
@@ -32,15 +33,6 @@ PandaJointVector RandomJoints(geometry::Rng& rng) {
   return q;
 }
 
-TEST(PandaTest, ZeroPoseHasTheFlangeWherePublishedKinematicsPutIt) {
-  // At q = 0 the flange is at (0.088, 0, 0.926) in the base frame, pointing down.
-  const Eigen::Isometry3d X = CalcPandaTcpPose({0, 0, 0, 0, 0, 0, 0});
-  EXPECT_NEAR(X.translation().x(), 0.088, 1e-12);
-  EXPECT_NEAR(X.translation().y(), 0.0, 1e-12);
-  EXPECT_NEAR(X.translation().z(), 0.926 - kPandaFlangeToTcp_m, 1e-12);
-  EXPECT_NEAR((X.linear() * Eigen::Vector3d::UnitZ()).z(), -1.0, 1e-12);
-}
-
 TEST(PandaTest, MujocoBodyTreeMatchesTheDhTable) {
   const PandaNames names{"left_"};
   const Eigen::Vector3d p_WBase(0.3, -0.4, 0.85);
@@ -60,27 +52,36 @@ TEST(PandaTest, MujocoBodyTreeMatchesTheDhTable) {
   }
 }
 
+// The simulator's inverse kinematics is kinematics::SolveIk on the Panda's chain in the arm's
+// base frame (motion.h's MoveTcpTo): its solutions put MuJoCo's tool centre point on the target.
 TEST(PandaTest, InverseKinematicsReachesTargetsInFrontOfTheArm) {
   const PandaNames names{"a_"};
-  ModelPtr model = LoadModelFromXml(WriteOneArmWorld(names, Eigen::Vector3d(0, 0, 0.8), Eigen::Quaterniond::Identity()));
+  const Eigen::Isometry3d X_WBase(Eigen::Translation3d(0.1, -0.2, 0.8) *
+                                  Eigen::AngleAxisd(0.4, Eigen::Vector3d::UnitZ()));
+  ModelPtr model = LoadModelFromXml(
+      WriteOneArmWorld(names, X_WBase.translation(), Eigen::Quaterniond(X_WBase.linear())));
   DataPtr data = MakeData(*model);
-  DataPtr scratch = MakeData(*model);
   const ArmIndex arm = FindArm(*model, names);
-  Eigen::Isometry3d X_target = Eigen::Isometry3d::Identity();
-  X_target.linear() = Eigen::AngleAxisd(kPi, Eigen::Vector3d::UnitX()).toRotationMatrix();  // pointing down
+  const kinematics::Chain chain = kinematics::MakePandaChain();
+  Eigen::Isometry3d X_BaseTarget = Eigen::Isometry3d::Identity();
+  // Pointing down.
+  X_BaseTarget.linear() = Eigen::AngleAxisd(kPi, Eigen::Vector3d::UnitX()).toRotationMatrix();
   int reached = 0;
   for (double x : {0.35, 0.5, 0.65}) {
     for (double y : {-0.25, 0.0, 0.25}) {
-      X_target.translation() = Eigen::Vector3d(x, y, 0.85);
-      const IkResult r = SolveArmIk(*model, *scratch, arm, X_target, kPandaReadyPose_rad);
+      X_BaseTarget.translation() = Eigen::Vector3d(x, y, 0.05);
+      const kinematics::IkResult r =
+          kinematics::SolveIk(chain, kinematics::MakePoseTarget(X_BaseTarget),
+                              kinematics::ToVector(kPandaReadyPose_rad));
       EXPECT_TRUE(r.converged) << x << " " << y << ": " << r.position_error_m;
       if (!r.converged) continue;
       ++reached;
-      SetArmJoints(*model, *data, arm, r.q_rad);
-      EXPECT_LT((GetTcpPose(*data, arm).translation() - X_target.translation()).norm(), 0.002);
+      SetArmJoints(*model, *data, arm, kinematics::ToPandaJoints(r.q));
+      const Eigen::Isometry3d X_WTarget = X_WBase * X_BaseTarget;
+      EXPECT_LT((GetTcpPose(*data, arm).translation() - X_WTarget.translation()).norm(), 0.002);
       for (int i = 0; i < kPandaJoints; ++i) {
-        EXPECT_GE(r.q_rad[i], kPandaLowerLimit_rad[i]);
-        EXPECT_LE(r.q_rad[i], kPandaUpperLimit_rad[i]);
+        EXPECT_GE(r.q[i], kPandaLowerLimit_rad[i]);
+        EXPECT_LE(r.q[i], kPandaUpperLimit_rad[i]);
       }
     }
   }
@@ -88,13 +89,11 @@ TEST(PandaTest, InverseKinematicsReachesTargetsInFrontOfTheArm) {
 }
 
 TEST(PandaTest, InverseKinematicsReportsATargetOutOfReach) {
-  const PandaNames names{"a_"};
-  ModelPtr model = LoadModelFromXml(WriteOneArmWorld(names, Eigen::Vector3d(0, 0, 0.8), Eigen::Quaterniond::Identity()));
-  DataPtr scratch = MakeData(*model);
-  const ArmIndex arm = FindArm(*model, names);
-  Eigen::Isometry3d X_target = Eigen::Isometry3d::Identity();
-  X_target.translation() = Eigen::Vector3d(1.5, 0, 0.85);  // the arm reaches about 0.855 m
-  const IkResult r = SolveArmIk(*model, *scratch, arm, X_target, kPandaReadyPose_rad);
+  Eigen::Isometry3d X_BaseTarget = Eigen::Isometry3d::Identity();
+  X_BaseTarget.translation() = Eigen::Vector3d(1.5, 0, 0.05);  // the arm reaches about 0.855 m
+  const kinematics::IkResult r =
+      kinematics::SolveIk(kinematics::MakePandaChain(), kinematics::MakePoseTarget(X_BaseTarget),
+                          kinematics::ToVector(kPandaReadyPose_rad));
   EXPECT_FALSE(r.converged);
   EXPECT_GT(r.position_error_m, 0.5);
 }

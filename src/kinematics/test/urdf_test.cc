@@ -1,0 +1,177 @@
+// URDF arms: the toy arm and the six-joint arm load and their forward kinematics match poses
+// computed by hand, and every bad file gives a message in our words naming the file and the
+// problem (no urdfdom or console_bridge decorations).
+#include "kinematics/urdf.h"
+
+#include <gtest/gtest.h>
+
+#include <fstream>
+#include <numbers>
+#include <sstream>
+
+#include "geometry/random.h"
+
+namespace prs::kinematics {
+namespace {
+
+constexpr double kPi = std::numbers::pi;
+
+std::string ReadData(const std::string& name) {
+  std::ifstream in(std::string(PRS_KINEMATICS_TEST_DATA) + "/" + name);
+  EXPECT_TRUE(in) << name;
+  std::stringstream text;
+  text << in.rdbuf();
+  return text.str();
+}
+
+// The message of the KinematicsError that loading `name` throws.
+std::string LoadError(const std::string& name, const std::string& base = "",
+                      const std::string& tool = "") {
+  try {
+    LoadUrdfChain(ReadData(name), name, base, tool);
+  } catch (const KinematicsError& e) {
+    return e.what();
+  }
+  ADD_FAILURE() << name << " loaded without an error";
+  return "";
+}
+
+void ExpectMessage(const std::string& message, const std::string& file,
+                   const std::vector<std::string>& parts) {
+  EXPECT_EQ(message.rfind(file + ": ", 0), 0u) << message;
+  for (const std::string& part : parts) {
+    EXPECT_NE(message.find(part), std::string::npos) << "'" << part << "' not in: " << message;
+  }
+  for (const char* noise : {"console_bridge", "Error:", "Error ", ".cpp", " at line "}) {
+    EXPECT_EQ(message.find(noise), std::string::npos) << "'" << noise << "' in: " << message;
+  }
+}
+
+TEST(UrdfTest, ToyArmMatchesHandComputedPoses) {
+  const Chain chain = LoadUrdfChain(ReadData("toy_arm.urdf"), "toy_arm.urdf");
+  ASSERT_EQ(chain.num_joints(), 3);
+  EXPECT_EQ(chain.joints[1].name, "shoulder");
+  EXPECT_EQ(chain.joints[2].lower, -2.5);
+  geometry::Rng rng(2, 0);
+  for (int trial = 0; trial < 20; ++trial) {
+    const double q1 = rng.Uniform(-3, 3), q2 = rng.Uniform(-1.5, 1.5), q3 = rng.Uniform(-2.5, 2.5);
+    // In the turntable's plane: 0.3 m upper arm and 0.25 m forearm about y from (0, 0, 0.3).
+    const double reach = 0.3 * std::cos(q2) + 0.25 * std::cos(q2 + q3);
+    const double height = 0.3 - 0.3 * std::sin(q2) - 0.25 * std::sin(q2 + q3);
+    const Eigen::Vector3d expected(reach * std::cos(q1), reach * std::sin(q1), height);
+    const Eigen::Isometry3d X = CalcToolPose(chain, Eigen::Vector3d(q1, q2, q3));
+    EXPECT_LT((X.translation() - expected).norm(), 1e-12);
+    const Eigen::Matrix3d R = (Eigen::AngleAxisd(q1, Eigen::Vector3d::UnitZ()) *
+                               Eigen::AngleAxisd(q2 + q3, Eigen::Vector3d::UnitY()))
+                                  .toRotationMatrix();
+    EXPECT_LT((X.linear() - R).norm(), 1e-12);
+  }
+}
+
+// The UR5's standard DH product, computed independently of the URDF.
+Eigen::Isometry3d CalcUr5Pose(const Eigen::VectorXd& q) {
+  const double d[6] = {0.089159, 0, 0, 0.10915, 0.09465, 0.0823};
+  const double a[6] = {0, -0.425, -0.39225, 0, 0, 0};
+  const double alpha[6] = {kPi / 2, 0, 0, kPi / 2, -kPi / 2, 0};
+  Eigen::Isometry3d X = Eigen::Isometry3d::Identity();
+  for (int i = 0; i < 6; ++i) {
+    X = X * Eigen::AngleAxisd(q[i], Eigen::Vector3d::UnitZ()) *
+        Eigen::Translation3d(a[i], 0, d[i]) * Eigen::AngleAxisd(alpha[i], Eigen::Vector3d::UnitX());
+  }
+  return X;
+}
+
+TEST(UrdfTest, SixJointArmMatchesItsDhParameters) {
+  const Chain chain = LoadUrdfChain(ReadData("six_joint_arm.urdf"), "six_joint_arm.urdf");
+  ASSERT_EQ(chain.num_joints(), 6);
+  EXPECT_EQ(chain.joints[5].name, "wrist_3_joint");
+  EXPECT_EQ(chain.joints[5].lower, -kPi);  // continuous
+  EXPECT_EQ(chain.joints[5].upper, kPi);
+  // At zero, by hand: x = a2 + a3, y = −(d4 + d6), z = d1 − d5.
+  const Eigen::Isometry3d X0 = CalcToolPose(chain, Eigen::VectorXd::Zero(6));
+  EXPECT_LT((X0.translation() - Eigen::Vector3d(-0.81725, -0.19145, -0.005491)).norm(), 1e-12);
+  geometry::Rng rng(4, 0);
+  for (int trial = 0; trial < 20; ++trial) {
+    Eigen::VectorXd q(6);
+    for (int i = 0; i < 6; ++i) q[i] = rng.Uniform(-kPi, kPi);
+    EXPECT_LT((CalcToolPose(chain, q).matrix() - CalcUr5Pose(q).matrix()).cwiseAbs().maxCoeff(),
+              1e-12);
+  }
+}
+
+TEST(UrdfTest, NamedBaseAndToolLinksPickASubchain) {
+  const Chain chain =
+      LoadUrdfChain(ReadData("six_joint_arm.urdf"), "arm", "upper_arm_link", "wrist_2_link");
+  ASSERT_EQ(chain.num_joints(), 3);  // elbow, wrist 1, wrist 2
+  EXPECT_EQ(chain.joints[0].name, "elbow_joint");
+  EXPECT_EQ(chain.joints[2].name, "wrist_2_joint");
+  const Chain fingers =
+      LoadUrdfChain(ReadData("two_fingers.urdf"), "two_fingers.urdf", "", "left_finger");
+  ASSERT_EQ(fingers.num_joints(), 2);
+  EXPECT_EQ(fingers.joints[1].type, JointType::kPrismatic);
+}
+
+TEST(UrdfTest, NotXml) {
+  ExpectMessage(LoadError("not_xml.urdf"), "not_xml.urdf", {"not an XML document", "line"});
+}
+
+TEST(UrdfTest, NotAUrdf) {
+  ExpectMessage(LoadError("not_urdf.urdf"), "not_urdf.urdf", {"not a URDF", "<scene>"});
+}
+
+TEST(UrdfTest, InvalidUrdfGivesUrdfdomsReasonCleaned) {
+  ExpectMessage(LoadError("revolute_without_limit.urdf"), "revolute_without_limit.urdf",
+                {"not a valid URDF", "swing", "limit"});
+}
+
+TEST(UrdfTest, UnknownLinkSuggestsTheNearestName) {
+  const std::string message = LoadError("toy_arm.urdf", "", "forarm");
+  ExpectMessage(message, "toy_arm.urdf",
+                {"no link named 'forarm'", "did you mean 'forearm'?", "'upper_arm'"});
+  const std::string base = LoadError("toy_arm.urdf", "bsae", "");
+  ExpectMessage(base, "toy_arm.urdf",
+                {"no link named 'bsae' (the base link)", "did you mean 'base'?"});
+  const std::string far = LoadError("toy_arm.urdf", "", "gripper_tip");
+  EXPECT_EQ(far.find("did you mean"), std::string::npos) << far;
+}
+
+TEST(UrdfTest, ToolNotDownstreamOfBase) {
+  ExpectMessage(LoadError("toy_arm.urdf", "forearm", "upper_arm"), "toy_arm.urdf",
+                {"'upper_arm' is not downstream of the base link 'forearm'", "'base'"});
+}
+
+TEST(UrdfTest, SeveralLeavesMakeTheToolAmbiguous) {
+  ExpectMessage(LoadError("two_fingers.urdf"), "two_fingers.urdf",
+                {"2 leaf links", "'left_finger', 'right_finger'", "name the tool link"});
+}
+
+TEST(UrdfTest, FloatingJointOnTheChain) {
+  ExpectMessage(LoadError("floating_joint.urdf"), "floating_joint.urdf",
+                {"joint 'free'", "floating"});
+}
+
+TEST(UrdfTest, LowerLimitAboveUpper) {
+  ExpectMessage(LoadError("limits_reversed.urdf"), "limits_reversed.urdf",
+                {"joint 'elbow'", "lower limit (1.2) above its upper limit (-0.4)"});
+}
+
+TEST(UrdfTest, MimicJointOnTheChain) {
+  ExpectMessage(LoadError("mimic_joint.urdf"), "mimic_joint.urdf",
+                {"joint 'follower' mimics joint 'leader'"});
+}
+
+TEST(UrdfTest, ChainWithoutMovableJoint) {
+  ExpectMessage(LoadError("no_movable_joint.urdf"), "no_movable_joint.urdf", {"no movable joint"});
+}
+
+TEST(UrdfTest, EmptyText) {
+  try {
+    LoadUrdfChain("", "empty.urdf");
+    FAIL() << "expected an error";
+  } catch (const KinematicsError& e) {
+    ExpectMessage(e.what(), "empty.urdf", {"not an XML document"});
+  }
+}
+
+}  // namespace
+}  // namespace prs::kinematics
