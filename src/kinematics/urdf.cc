@@ -159,8 +159,9 @@ urdf::LinkConstSharedPtr FindLink(const urdf::ModelInterface& model, const std::
     const int d = CalcEditDistance(name, n);
     if (d < best_distance) best = n, best_distance = d;
   }
+  message += "; its links are " + JoinNames(names);
   if (!best.empty()) message += "; did you mean '" + best + "'?";
-  throw KinematicsError(message + " The links are " + JoinNames(names) + ".");
+  throw KinematicsError(message);
 }
 
 // The only link without children below `base`.
@@ -293,13 +294,18 @@ Chain LoadUrdfChain(const std::string& xml_text, const std::string& file_label,
   TiXmlDocument document;
   document.Parse(xml_text.c_str());
   if (document.Error()) {
-    // TinyXML's descriptions read "Error reading end tag.": lower-cased, without the period.
+    // TinyXML's descriptions read "Error reading end tag." or "Error document empty.": without
+    // the "Error" and the period, and located when TinyXML knows where.
     std::string description = CleanMessage(document.ErrorDesc());
-    if (!description.empty()) description[0] = static_cast<char>(std::tolower(description[0]));
+    if (description.rfind("Error ", 0) == 0) description.erase(0, 6);
     if (!description.empty() && description.back() == '.') description.pop_back();
-    throw KinematicsError(file_label + ": not an XML document: " + description + " (line " +
-                          std::to_string(document.ErrorRow()) + ", column " +
-                          std::to_string(document.ErrorCol()) + ")");
+    if (description == "document empty") description = "no XML element in it";
+    std::string where;
+    if (document.ErrorRow() > 0) {
+      where = " (line " + std::to_string(document.ErrorRow()) + ", column " +
+              std::to_string(document.ErrorCol()) + ")";
+    }
+    throw KinematicsError(file_label + ": not an XML document: " + description + where);
   }
   const TiXmlElement* root = document.RootElement();
   if (!root || root->ValueStr() != "robot") {
