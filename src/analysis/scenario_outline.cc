@@ -161,6 +161,11 @@ std::string NameGivenRegion(const lang::Expr& e, const lang::SourceManager& sour
   return text.size() > kMaxLength ? text.substr(0, kMaxLength - 3) + "..." : text;
 }
 
+// A specifier's target as written (an arm's or camera's name), shortened.
+std::string Target(const lang::Specifier& s, const lang::SourceManager& sources) {
+  return s.target ? NameGivenRegion(*s.target, sources) : "?";
+}
+
 // The parts of a position region, counted as the specifiers contribute them.
 struct RegionParts {
   bool point = false;
@@ -189,6 +194,20 @@ struct RegionParts {
       case SpecifierKind::kAlignedWith:
         ++planes;
         break;
+      case SpecifierKind::kReachableBy:
+        given_regions.push_back("the set reachable by " + Target(s, sources));
+        break;
+      case SpecifierKind::kInViewOf:
+      case SpecifierKind::kCompletelyInViewOf:
+      case SpecifierKind::kVisibleFrom:
+      case SpecifierKind::kCompletelyVisibleFrom:
+        given_regions.push_back("the view of " + Target(s, sources));
+        break;
+      case SpecifierKind::kNotInViewOf:
+        given_regions.push_back("outside the view of " + Target(s, sources));
+        break;
+      case SpecifierKind::kNotVisibleFrom:
+        break;  // a line-of-sight test once the scene is complete, not a region
       default:
         if (lang::IsSideSpecifier(s.kind)) ++half_spaces;
         break;

@@ -27,6 +27,12 @@ bool IsSideSpecifier(SpecifierKind kind) {
          kind == SpecifierKind::kAbove || kind == SpecifierKind::kBelow;
 }
 
+bool IsViewSpecifier(SpecifierKind kind) {
+  return kind == SpecifierKind::kInViewOf || kind == SpecifierKind::kCompletelyInViewOf ||
+         kind == SpecifierKind::kVisibleFrom || kind == SpecifierKind::kCompletelyVisibleFrom ||
+         kind == SpecifierKind::kNotInViewOf || kind == SpecifierKind::kNotVisibleFrom;
+}
+
 std::string_view SpecifierName(SpecifierKind kind) {
   switch (kind) {
     case SpecifierKind::kWith: return "with";
@@ -44,6 +50,13 @@ std::string_view SpecifierName(SpecifierKind kind) {
     case SpecifierKind::kBeyond: return "beyond";
     case SpecifierKind::kFacing: return "facing";
     case SpecifierKind::kFacingToward: return "facing toward";
+    case SpecifierKind::kReachableBy: return "reachable by";
+    case SpecifierKind::kInViewOf: return "in view of";
+    case SpecifierKind::kCompletelyInViewOf: return "completely in view of";
+    case SpecifierKind::kVisibleFrom: return "visible from";
+    case SpecifierKind::kCompletelyVisibleFrom: return "completely visible from";
+    case SpecifierKind::kNotInViewOf: return "not in view of";
+    case SpecifierKind::kNotVisibleFrom: return "not visible from";
   }
   return "?";
 }

@@ -119,7 +119,14 @@ struct DistanceExpr {  // distance from A to B
 // Object creation: a known class name followed by zero or more specifiers.
 enum class SpecifierKind {
   kWith, kAt, kIn, kOn, kCompletelyOn, kLeftOf, kRightOf, kAheadOf, kBehind,
-  kAbove, kBelow, kAlignedWith, kBeyond, kFacing, kFacingToward
+  kAbove, kBelow, kAlignedWith, kBeyond, kFacing, kFacingToward,
+  // Robot- and camera-aware specifiers (spec §10).
+  kReachableBy, kInViewOf, kCompletelyInViewOf, kVisibleFrom, kCompletelyVisibleFrom,
+  kNotInViewOf, kNotVisibleFrom
+};
+struct SpecifierOption {  // `reachable by ARM with margin 0.02`: name "margin", value 0.02
+  Identifier name;
+  ExprPtr value;
 };
 struct Specifier {
   SpecifierKind kind;
@@ -129,6 +136,7 @@ struct Specifier {
   ExprPtr distance;  // `by d` (left of/right of/ahead of/behind/above/below/beyond), may be null
   ExprPtr from;      // `beyond X by d from Y`
   std::optional<Identifier> axis;  // aligned with X on|along x|y|z, or by "x" (the string's span)
+  std::vector<SpecifierOption> options;  // `reachable by`: with margin|approach|grasp VALUE
 };
 struct ClassRef {  // a class name used with no specifiers
   std::string name;
@@ -241,6 +249,8 @@ std::string_view SideName(Side side);
 std::string_view SpecifierName(SpecifierKind kind);
 /// left of, right of, ahead of, behind, above, below: a half-space beside the target.
 bool IsSideSpecifier(SpecifierKind kind);
+/// in view of, completely in view of, visible from, ... (a camera as the target).
+bool IsViewSpecifier(SpecifierKind kind);
 /// Returns the source spelling of a binary operator, e.g. "not in".
 std::string_view BinaryOpName(BinaryOp op);
 

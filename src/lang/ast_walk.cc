@@ -60,6 +60,7 @@ void ForEachChild(const Expr& expr, const std::function<void(const Expr&)>& visi
             VisitIf(s.target, visit);
             VisitIf(s.distance, visit);
             VisitIf(s.from, visit);
+            for (const SpecifierOption& option : s.options) VisitIf(option.value, visit);
           }
         }
       },

@@ -8,6 +8,7 @@
 #include <fstream>
 #include <sstream>
 
+#include "lang/arms.h"
 #include "lang/lang.h"
 #include "lang/parser.h"
 #include "lang/resolve.h"
@@ -211,6 +212,17 @@ std::string DescribeUnreadable(const std::string& path, const FileSystem* inject
 
 }  // namespace
 
+std::string DefaultCacheDir() {
+  if (const char* dir = std::getenv("PRS_CACHE_DIR")) return dir;
+  if (const char* xdg = std::getenv("XDG_CACHE_HOME"); xdg && *xdg) {
+    return (std::filesystem::path(xdg) / "probrobscene").string();
+  }
+  if (const char* home = std::getenv("HOME"); home && *home) {
+    return (std::filesystem::path(home) / ".cache" / "probrobscene").string();
+  }
+  return "";
+}
+
 const FileSystem& RealFileSystem() {
   static const DiskFileSystem kDisk;
   return kDisk;
@@ -225,6 +237,7 @@ std::unique_ptr<CompiledProgram> CompileText(const std::string& path, std::strin
   for (const auto& [name, value] : options.param_overrides) program->param_overrides[name] = value;
   if (!diagnostics.has_errors()) ResolveProgram(*program, loader.loaded(), diagnostics);
   if (!diagnostics.has_errors()) CheckParamOverrides(*program, options, diagnostics);
+  if (!diagnostics.has_errors()) internal::LoadArmFiles(*program, options, diagnostics);
   return program;
 }
 

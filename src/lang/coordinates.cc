@@ -85,4 +85,27 @@ Eigen::Vector3d Interpreter::DrawPosition(const geometry::RegionSampler& sampler
   return sampler.Sample(rng_);
 }
 
+Eigen::Vector3d Interpreter::DrawUnionPosition(const geometry::UnionSampler& sampler, int index,
+                                               SourceSpan span) {
+  static const std::string kPiece = "position piece";
+  // Without balls the first try is taken; with balls a point outside one restarts the whole
+  // draw, piece included, which keeps the law uniform over the union (union.h).
+  constexpr int kMaxBallRetries = 10000;
+  for (int attempt = 0; attempt < kMaxBallRetries; ++attempt) {
+    int piece = 0;
+    if (sampler.num_pieces() > 1) {
+      const NamingScope naming(*this, index, &kPiece);
+      piece = sampler.PickPiece(DrawUniform(0, sampler.measure(), span, "position piece"));
+    }
+    const geometry::RegionSampler& s = sampler.piece_sampler(piece);
+    if (!sampler.has_balls()) return sampler.ToWorld(DrawPosition(s, index, span));
+    ++draws_;
+    const double* u = TakeCoordinates(s.dimension(), "position", span, index);
+    const Eigen::Vector3d p_L = u ? s.MapPolytopePart(u) : s.SamplePolytopePart(rng_);
+    if (s.IsInBalls(p_L)) return sampler.ToWorld(p_L);
+  }
+  Reject(RejectionKind::kEmptyRegion, "no room for " + scene_.objects[index].DisplayName(index),
+         span, "its region is too thin to sample: 10,000 points fell outside its balls");
+}
+
 }  // namespace prs::lang::internal

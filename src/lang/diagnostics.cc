@@ -268,6 +268,7 @@ const std::vector<DiagnosticKind>& DiagnosticCatalogue() {
       {"missing-of", "parser", "`left`, `ahead`, … without `of`"},
       {"unknown-side", "parser", "a misspelled compound side such as `top frnt of t`"},
       {"bad-axis", "parser", "`aligned with X on` an axis other than x, y, z"},
+      {"duplicate-option", "parser", "an option of `reachable by` (margin, approach, grasp) given twice"},
       {"invalid-assignment-target", "parser", "assigning to something that is not a name"},
       {"unsupported-feature", "lexer, parser", "a Python feature ProbRobScene does not support"},
       {"bad-class-body", "parser", "a class body line that is not `name: expr` or `pass`"},
@@ -279,7 +280,7 @@ const std::vector<DiagnosticKind>& DiagnosticCatalogue() {
       {"nested-definition", "parser", "`class` inside a block (classes are top-level only)"},
       {"too-deeply-nested", "parser", "blocks or expressions nested beyond the parser's limit"},
       // ---- resolver / interpreter (appended by those stages) ------------------
-      {"file-not-found", "compiler", "the main file cannot be read"},
+      {"file-not-found", "compiler", "the main file, or a URDF file an `arm` names, cannot be read"},
       {"module-not-found", "compiler", "`from NAME import *` finds no NAME.prs on the search path"},
       {"unknown-param", "compiler", "`-p NAME=VALUE` for a NAME no `param` statement declares"},
       {"import-cycle", "compiler", "modules that import each other, directly or not"},
@@ -308,6 +309,10 @@ const std::vector<DiagnosticKind>& DiagnosticCatalogue() {
       {"empty-region", "interpreter", "no position satisfies an object's specifiers"},
       {"limit-exceeded", "interpreter", "a run exceeded a loop, recursion or object limit"},
       {"naive-needs-workspace", "interpreter", "naive sampling with no bounded workspace"},
+      {"not-an-arm", "interpreter", "`reachable by` an object whose class has no `arm` property"},
+      {"bad-arm", "interpreter",
+       "an arm that cannot be used: unknown model, bad URDF, missing link, bad options"},
+      {"bad-camera", "interpreter", "a camera whose intrinsics are out of range (fov, aspect, near/far)"},
       {"sampling-failed", "sampler", "no valid scene within the attempt limit, or none possible"},
   };
   return kCatalogue;

@@ -217,6 +217,9 @@ class FixedAnalysis {
     for (const ExprPtr* e : {&s.target, &s.distance, &s.from}) {
       if (*e && !Analyze(**e, m, false).fixed) return false;
     }
+    for (const SpecifierOption& option : s.options) {
+      if (!Analyze(*option.value, m, false).fixed) return false;
+    }
     return true;
   }
 
@@ -268,6 +271,7 @@ Info FixedAnalysis::AnalyzeNode(const CreateObject& node, const Expr&, int m, bo
     for (const ExprPtr* e : {&s.target, &s.distance, &s.from}) {
       if (*e) Analyze(**e, m, false);  // visits nested creations (never fixed)
     }
+    for (const SpecifierOption& option : s.options) Analyze(*option.value, m, false);
   }
   if (!creation_ok) return {false, Kind::kObject};
   MarkPlan(it->second, m);

@@ -23,6 +23,8 @@ const char* RejectionKindName(RejectionKind kind) {
     case RejectionKind::kOutsideRegion: return "outside-region";
     case RejectionKind::kRelativePosition: return "relative-position";
     case RejectionKind::kContainment: return "containment";
+    case RejectionKind::kOccluded: return "occluded";
+    case RejectionKind::kVisible: return "visible";
   }
   return "unknown";
 }
@@ -44,6 +46,7 @@ AttemptResult Interpreter::Run() {
   try {
     RunModule(program_.main_module);
     CheckWorkspace();
+    CheckSightLines();
     if (naive_violation_) throw RejectSignal{std::move(*naive_violation_)};
   } catch (RejectSignal& signal) {
     signal.rejection.certain = draws_ == 0;

@@ -9,6 +9,7 @@
 #include <unordered_map>
 #include <vector>
 
+#include "camera/camera.h"
 #include "geometry/geometry.h"
 #include "lang/builtins.h"
 #include "lang/lang.h"
@@ -39,6 +40,20 @@ struct PositionConstraint {
   /// whole box must lie in, tested exactly once the orientation is known. `region` then holds
   /// a superset of the valid centres.
   std::optional<geometry::ConvexRegion> box_region;
+  /// Set for a specifier whose region is a union of convex pieces (`reachable by`, `not in
+  /// view of`); `region` is then all of space. `pieces_description` names it in messages.
+  std::optional<geometry::RegionUnion> pieces;
+  std::string pieces_description;
+};
+
+/// A line-of-sight test that waits for the whole scene (`visible from`, `completely visible
+/// from`, `not visible from`): every other object may hide the one seen.
+struct SightCheck {
+  int index;       // the object seen
+  int camera;      // the camera object (never an occluder), or -1 for an oriented point
+  Eigen::Isometry3d X_WC;
+  camera::CameraIntrinsics intrinsics;
+  const Specifier* specifier;
 };
 
 /// A round set inside the object's box for every turn its open orientation may take: the disk
@@ -169,6 +184,23 @@ class Interpreter {
   geometry::ConvexRegion ErodeByOwnBox(const geometry::ConvexRegion& box_region, int index,
                                        ObjectPlan::OpenTurn open, PositionConstraint& c);
   RoundCore CalcRoundCore(int index, ObjectPlan::OpenTurn open);
+  // --- robot- and camera-aware specifiers (placement_views.cc) ---
+  PositionConstraint EvalReachableConstraint(const Specifier& s);
+  PositionConstraint EvalViewConstraint(const Specifier& s, int index, ObjectPlan::OpenTurn open);
+  // The camera a view specifier names: its pose and intrinsics (from its properties).
+  SightCheck EvalCamera(const Specifier& s, int index);
+  // A cached fixed object skips its placement: its line-of-sight tests are registered here.
+  void RegisterFixedSightChecks(const ObjectPlan& plan, int index);
+  // At the end of the attempt: every `visible from` test against the whole scene.
+  void CheckSightLines();
+  // With RunOptions::record_regions: keeps `pieces_L` (placed by X_WL) in Scene::regions.
+  void RecordRegion(int object, std::string what, const std::vector<geometry::ConvexRegion>& pieces_L,
+                    const Eigen::Isometry3d& X_WL = Eigen::Isometry3d::Identity());
+  // A uniform position in a union of pieces: "position piece", then the position in it.
+  Eigen::Vector3d DrawUnionPosition(const geometry::UnionSampler& sampler, int index, SourceSpan span);
+  Eigen::Vector3d SampleUnion(const std::vector<PositionConstraint>& constraints,
+                              const geometry::RegionUnion& region,
+                              const geometry::ConvexRegion* workspace, int index, SourceSpan span);
   // Once the orientation is known: the exact tests the position was drawn without.
   void CheckOpenTurn(int index);
   // Naive mode: whether a violation of KIND becomes the scene's rejection (naive_violation_).
@@ -184,9 +216,9 @@ class Interpreter {
   // --- fixed placements (placement_fixed.cc) ---
   const FixedPlacement* CachedPlacement(const ObjectPlan& plan) const;
   Eigen::Vector3d PlaceFixed(const ObjectPlan& plan, const std::vector<PositionConstraint>& constraints,
-                             const geometry::ConvexRegion& region, int index, SourceSpan span);
+                             const geometry::RegionUnion& region, int index, SourceSpan span);
   std::shared_ptr<const FixedPlacement> BuildFixedPlacement(
-      const std::vector<PositionConstraint>& constraints, const geometry::ConvexRegion& region,
+      const std::vector<PositionConstraint>& constraints, const geometry::RegionUnion& region,
       int index, SourceSpan span);
   std::vector<int> FixedObstacles(int index) const;
   Eigen::Vector3d SampleFixed(const FixedPlacement& placement, int index, SourceSpan span);
@@ -264,6 +296,7 @@ class Interpreter {
   // relative-position ones before containment ones (KeepsNaiveViolation).
   std::optional<Rejection> naive_violation_;
   std::vector<OpenTurnCheck> open_turn_checks_;  // see ObjectPlan::open_turn
+  std::vector<SightCheck> sight_checks_;          // tested by CheckSightLines
   Value return_value_;
 };
 

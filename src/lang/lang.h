@@ -33,7 +33,16 @@ struct CompileOptions {
   /// `param` overrides, NAME -> text (a number when it parses as one, else a string).
   std::vector<std::pair<std::string, std::string>> param_overrides;
   const FileSystem* file_system = nullptr;  // null: the real one
+  /// Where reachable sets (`reachable by`) are cached between runs; empty: no disk cache.
+  std::string cache_dir;
+  /// Called (from any sampling thread, one call at a time) with notes for the user that arise
+  /// while the program runs, e.g. "panda's reachable set (...): computed in 1.2 s".
+  std::function<void(const std::string&)> on_note;
 };
+
+/// Where reachable sets are cached by default: $PRS_CACHE_DIR when set (empty: no disk cache),
+/// else $XDG_CACHE_HOME/probrobscene, else $HOME/.cache/probrobscene, else "" (no disk cache).
+std::string DefaultCacheDir();
 
 /// Compiles the program in `path`. Always returns a program, whose `sources` render the
 /// diagnostics; it may be run only when `diagnostics.has_errors()` is false.
@@ -44,6 +53,17 @@ std::unique_ptr<CompiledProgram> CompileFile(const std::string& path, const Comp
 std::unique_ptr<CompiledProgram> CompileText(const std::string& path, std::string text,
                                              const CompileOptions& options,
                                              DiagnosticEngine& diagnostics);
+
+/// A file a program reads besides its modules (a URDF file an `arm` property names): the name
+/// the program gives it, the path it was read from, and its text as read at compile time.
+struct ProgramResource {
+  std::string name;
+  std::string path;
+  std::string text;
+};
+
+/// The resources of a compiled program, by name (campaigns copy them; the spec hash covers them).
+std::vector<ProgramResource> ListResources(const CompiledProgram& program);
 
 /// Bounds on one run, each a clear error when exceeded.
 struct RunLimits {
@@ -103,6 +123,9 @@ struct RunOptions {
   RunLimits limits;
   RunCache* cache = nullptr;  // optional; never changes the result, only the speed
   CoordinateInput coordinates;
+  /// Keep the region each position was drawn from in Scene::regions (for pictures); never
+  /// changes the scene.
+  bool record_regions = false;
 };
 
 /// The outcome of one attempt: a scene, or the reason it was rejected.

@@ -20,6 +20,7 @@ Value Interpreter::CreateObject(const ObjectPlan& plan, SourceSpan span) {
     scene_.objects.push_back(*cached);
     completed_.push_back(false);
     FinishObject(index, span);  // an earlier random object may still collide with it
+    RegisterFixedSightChecks(plan, index);
     return ObjectRef{index};
   }
   const int64_t draws_before = draws_;

@@ -118,6 +118,8 @@ class Parser {
   ExprPtr ParseCreation();
   Specifier ParseSpecifier();
   void ParseSpecifierTail(Specifier* s, const Token& keyword);
+  void ParseVisibilitySpecifier(Specifier* s, const Token& keyword);
+  void ParseReachableOptions(Specifier* s);
   void ParseAlignedAxis(Specifier* s);
   ExprPtr ParseSpecifierArg(std::string_view after);
   std::optional<ExprPtr> ParseOptionalBy();

@@ -6,6 +6,7 @@
 #include <algorithm>
 #include <cmath>
 #include <limits>
+#include <optional>
 
 #include "lang/interp_internal.h"
 
@@ -50,7 +51,10 @@ std::string DescribeSpecifier(const Specifier& s, const SourceManager& sources) 
 }
 
 Vector3d Interpreter::PlacePosition(const ObjectPlan& plan, int index, SourceSpan span) {
-  if (const FixedPlacement* cached = CachedPlacement(plan)) return SampleFixed(*cached, index, span);
+  if (const FixedPlacement* cached = CachedPlacement(plan)) {
+    RegisterFixedSightChecks(plan, index);  // the tests its skipped specifiers would register
+    return SampleFixed(*cached, index, span);
+  }
   if (plan.position_specifiers.empty()) {
     const PropertyDefault* d = plan.cls->FindDefault("position");
     return ToVector(EvalDefault(*d, index), d->expr ? d->expr->span : span, "the default position");
@@ -83,14 +87,36 @@ Vector3d Interpreter::PlacePosition(const ObjectPlan& plan, int index, SourceSpa
                         c.specifier->span, constraints, workspace, index, span);
     }
   }
-  if (point) return point->p_W;
+  if (point) {
+    for (const PositionConstraint& c : constraints) {
+      if (!c.pieces || c.pieces->Contains(point->p_W, 1e-9)) continue;
+      RejectEmptyRegion(RejectionKind::kOutsideRegion,
+                        scene_.objects[index].DisplayName(index) + " " +
+                            DescribeSpecifier(*c.specifier, program_.sources),
+                        c.specifier->span, constraints, workspace, index, span);
+    }
+    return point->p_W;
+  }
   // Without folding (no box, or an orientation that depends on the position), the centre
   // must still lie in the workspace: bounding the region by it is exact, as the workspace
   // check at the end of the scene rejects every centre outside it anyway.
   if (!workspace && Workspace()) region = geometry::Intersect(region, *Workspace());
-  CheckBounded(constraints, region, index, span);
-  if (plan.region_fixed) return PlaceFixed(plan, constraints, region, index, span);
-  return SampleRegion(constraints, region, workspace, index, span);
+  // Specifiers whose regions are unions of pieces: intersected with the rest piece by piece.
+  std::optional<geometry::RegionUnion> pieces;
+  for (const PositionConstraint& c : constraints) {
+    if (!c.pieces) continue;
+    pieces = pieces ? geometry::Intersect(*pieces, *c.pieces) : geometry::Intersect(*c.pieces, region);
+  }
+  if (!pieces) {
+    CheckBounded(constraints, region, index, span);
+    if (plan.region_fixed) {
+      return PlaceFixed(plan, constraints, geometry::RegionUnion::FromConvex(region), index, span);
+    }
+    return SampleRegion(constraints, region, workspace, index, span);
+  }
+  if (!pieces->IsBounded()) CheckBounded(constraints, ConvexRegion::All(), index, span);
+  if (plan.region_fixed) return PlaceFixed(plan, constraints, *pieces, index, span);
+  return SampleUnion(constraints, *pieces, workspace, index, span);
 }
 
 void Interpreter::CheckBounded(const std::vector<PositionConstraint>& constraints,
@@ -98,7 +124,8 @@ void Interpreter::CheckBounded(const std::vector<PositionConstraint>& constraint
   if (region.IsEmpty() || region.IsBounded()) return;
   std::vector<DiagnosticNote> notes;
   for (const PositionConstraint& c : constraints) {
-    notes.push_back({c.specifier->span, true, "this specifier's region is " + c.region.Describe()});
+    notes.push_back({c.specifier->span, true, "this specifier's region is " +
+                                                  (c.pieces ? c.pieces_description : c.region.Describe())});
   }
   notes.push_back({{}, false, "add a bounded specifier such as 'on', 'completely on' or 'in', "
                               "or bind 'workspace' to a bounded region"});
@@ -115,8 +142,24 @@ Vector3d Interpreter::SampleRegion(const std::vector<PositionConstraint>& constr
     RejectEmptyRegion(RejectionKind::kEmptyRegion, "no room for " + scene_.objects[index].DisplayName(index),
                       span, constraints, workspace, index, span);
   }
+  if (options_.record_regions) RecordRegion(index, "position", {region});
   try {
     return DrawPosition(geometry::RegionSampler(region), index, span);
+  } catch (const std::domain_error&) {
+    Reject(RejectionKind::kEmptyRegion, "no room for " + scene_.objects[index].DisplayName(index), span);
+  }
+}
+
+Vector3d Interpreter::SampleUnion(const std::vector<PositionConstraint>& constraints,
+                                  const geometry::RegionUnion& region, const ConvexRegion* workspace,
+                                  int index, SourceSpan span) {
+  if (region.IsEmpty()) {
+    RejectEmptyRegion(RejectionKind::kEmptyRegion, "no room for " + scene_.objects[index].DisplayName(index),
+                      span, constraints, workspace, index, span);
+  }
+  if (options_.record_regions) RecordRegion(index, "position", region.piece_set().pieces(), region.X_WL());
+  try {
+    return DrawUnionPosition(geometry::UnionSampler(region), index, span);
   } catch (const std::domain_error&) {
     Reject(RejectionKind::kEmptyRegion, "no room for " + scene_.objects[index].DisplayName(index), span);
   }
@@ -169,7 +212,10 @@ PositionConstraint Interpreter::EvalPositionConstraint(const Specifier& s, int i
       }
       return c;
     }
+    case SpecifierKind::kReachableBy:
+      return EvalReachableConstraint(s);
     default:
+      if (IsViewSpecifier(s.kind)) return EvalViewConstraint(s, index, open);
       return EvalSideConstraint(s, index, open);
   }
 }
@@ -317,7 +363,13 @@ Diagnostic Interpreter::ExplainEmptyRegion(const std::vector<PositionConstraint>
   d.span = span;
   d.message = "no position satisfies every specifier of this " + o.cls->name;
   for (const PositionConstraint& c : constraints) {
-    if (!c.is_point && c.region.IsEmpty()) {
+    if (c.pieces && c.pieces->IsEmpty()) {
+      d.span = c.specifier->span;
+      d.message = DescribeSpecifier(*c.specifier, program_.sources) + " leaves no room for this " +
+                  o.cls->name + ": " + c.pieces_description + " is empty";
+      return d;
+    }
+    if (!c.is_point && !c.pieces && c.region.IsEmpty()) {
       d.span = c.specifier->span;
       d.message = DescribeSpecifier(*c.specifier, program_.sources) + " leaves no room for this " +
                   o.cls->name;
@@ -330,6 +382,7 @@ Diagnostic Interpreter::ExplainEmptyRegion(const std::vector<PositionConstraint>
     }
     std::string kind = c.is_point ? "the point (" + Format(c.p_W.x()) + ", " + Format(c.p_W.y()) +
                                         ", " + Format(c.p_W.z()) + ")"
+                       : c.pieces ? c.pieces_description
                                   : c.region.Describe();
     d.notes.push_back({c.specifier->span, true, "this specifier gives " + kind});
   }
@@ -396,6 +449,14 @@ Vector3d Interpreter::SampleNaive(const std::vector<PositionConstraint>& constra
   }
   for (const PositionConstraint& c : constraints) {
     if (c.is_point) continue;
+    if (c.pieces) {
+      if (!KeepsNaiveViolation(RejectionKind::kContainment) || c.pieces->Contains(p, 1e-9)) continue;
+      naive_violation_ = Rejection{RejectionKind::kContainment,
+                                   scene_.objects[index].DisplayName(index) + " " +
+                                       DescribeSpecifier(*c.specifier, program_.sources),
+                                   c.specifier->span, ""};
+      continue;
+    }
     const RejectionKind kind = IsRelativeSpecifier(c.specifier->kind)
                                    ? RejectionKind::kRelativePosition
                                    : RejectionKind::kContainment;

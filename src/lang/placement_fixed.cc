@@ -5,6 +5,7 @@
 // changes no scene's weight, only the number of rejected attempts. The pieces are built once
 // per thread and cached (RunCache); building or reusing them consumes the same random draws.
 // Objects that are wholly fixed (ObjectPlan::object_fixed) are likewise built once and copied.
+#include <algorithm>
 #include <atomic>
 
 #include "geometry/difference.h"
@@ -40,7 +41,7 @@ const FixedPlacement* Interpreter::CachedPlacement(const ObjectPlan& plan) const
 
 Vector3d Interpreter::PlaceFixed(const ObjectPlan& plan,
                                  const std::vector<PositionConstraint>& constraints,
-                                 const ConvexRegion& region, int index, SourceSpan span) {
+                                 const geometry::RegionUnion& region, int index, SourceSpan span) {
   std::shared_ptr<const FixedPlacement> placement =
       BuildFixedPlacement(constraints, region, index, span);
   if (options_.cache) options_.cache->placements[&plan] = placement;
@@ -60,19 +61,24 @@ std::vector<int> Interpreter::FixedObstacles(int index) const {
 }
 
 std::shared_ptr<const FixedPlacement> Interpreter::BuildFixedPlacement(
-    const std::vector<PositionConstraint>& constraints, const ConvexRegion& region, int index,
-    SourceSpan span) {
+    const std::vector<PositionConstraint>& constraints, const geometry::RegionUnion& region,
+    int index, SourceSpan span) {
   if (region.IsEmpty()) {
     // Everything involved is fixed, so every scene would fail the same way.
     throw ScenarioError(ExplainEmptyRegion(constraints, Workspace(), index, span));
   }
-  std::vector<ConvexRegion> pieces{region};
+  // The pieces live in the region's frame L; obstacles are moved there to be cut out.
+  std::vector<ConvexRegion> pieces = region.piece_set().pieces();
+  const Eigen::Isometry3d X_LW = region.X_WL().inverse();
   std::vector<int> cut;
   // Balls have no exact measure for weighting pieces: leave obstacles to the collision check.
-  const std::vector<int> obstacles = region.balls().empty() ? FixedObstacles(index) : std::vector<int>{};
+  const bool has_balls = std::any_of(pieces.begin(), pieces.end(),
+                                     [](const ConvexRegion& p) { return !p.balls().empty(); });
+  const std::vector<int> obstacles = has_balls ? std::vector<int>{} : FixedObstacles(index);
   const geometry::OrientedBox box = BoxOf(index);
   for (int j : obstacles) {
-    const ConvexRegion forbidden = geometry::CalcBoxOverlapRegion(BoxOf(j), box.R_WB, box.half_extents);
+    const ConvexRegion forbidden = geometry::TransformRegion(
+        geometry::CalcBoxOverlapRegion(BoxOf(j), box.R_WB, box.half_extents), X_LW);
     std::vector<ConvexRegion> next;
     bool overlaps = false;
     for (const ConvexRegion& piece : pieces) {
@@ -85,7 +91,7 @@ std::shared_ptr<const FixedPlacement> Interpreter::BuildFixedPlacement(
         next.push_back(std::move(part));
       }
     }
-    if (next.size() > kMaxPieces) break;
+    if (next.size() > std::max(kMaxPieces, pieces.size())) break;
     if (overlaps) cut.push_back(j);
     pieces = std::move(next);
     if (pieces.empty()) break;
@@ -99,25 +105,30 @@ std::shared_ptr<const FixedPlacement> Interpreter::BuildFixedPlacement(
              " the same in every scene",
          {{{}, false, "move the object's region or those objects apart"}});
   }
-  auto placement = std::make_shared<FixedPlacement>();
-  double total = 0;
-  for (const ConvexRegion& piece : pieces) {
-    placement->pieces.emplace_back(piece);
-    total += pieces.size() == 1 ? 1.0 : placement->pieces.back().measure();
-    placement->cumulative_measure.push_back(total);
-  }
+  auto placement = std::make_shared<FixedPlacement>(FixedPlacement{geometry::UnionSampler(
+      geometry::RegionUnion(std::make_shared<const geometry::PieceSet>(std::move(pieces)), region.X_WL()))});
+  placement->sampler.BuildAll();
   return placement;
 }
 
 Vector3d Interpreter::SampleFixed(const FixedPlacement& placement, int index, SourceSpan span) {
-  size_t i = 0;
-  if (placement.pieces.size() > 1) {
-    static const std::string kPiece = "position piece";
-    const NamingScope naming(*this, index, &kPiece);
-    const double u = DrawUniform(0, placement.cumulative_measure.back(), span, "position piece");
-    while (i + 1 < placement.pieces.size() && u >= placement.cumulative_measure[i]) ++i;
+  if (options_.record_regions) {
+    RecordRegion(index, "position", placement.sampler.pieces(), placement.sampler.X_WL());
   }
-  return DrawPosition(placement.pieces[i], index, span);
+  return DrawUnionPosition(placement.sampler, index, span);
+}
+
+void Interpreter::RecordRegion(int object, std::string what, const std::vector<ConvexRegion>& pieces_L,
+                               const Eigen::Isometry3d& X_WL) {
+  PlacedRegion record;
+  record.object = object;
+  record.what = what + " of " + scene_.objects[object].DisplayName(object);
+  for (const ConvexRegion& piece : pieces_L) {
+    record.pieces_W.push_back(X_WL.isApprox(Eigen::Isometry3d::Identity())
+                                  ? piece
+                                  : geometry::TransformRegion(piece, X_WL));
+  }
+  scene_.regions.push_back(std::move(record));
 }
 
 const SceneObject* Interpreter::CachedFixedObject(const ObjectPlan& plan) const {

@@ -30,7 +30,8 @@ bool IsOrientationSpecifier(const Specifier& s) {
 // Properties of the object itself that a position specifier reads.
 std::vector<std::string> PositionReads(const Specifier& s) {
   if (s.kind == SpecifierKind::kOn) return {"height"};
-  if (s.kind == SpecifierKind::kCompletelyOn || IsSideSpecifier(s.kind)) {
+  if (s.kind == SpecifierKind::kCompletelyOn || IsSideSpecifier(s.kind) ||
+      s.kind == SpecifierKind::kCompletelyInViewOf || s.kind == SpecifierKind::kCompletelyVisibleFrom) {
     return {"width", "length", "height", "orientation"};
   }
   return {};

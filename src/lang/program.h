@@ -14,6 +14,10 @@
 
 namespace prs::lang {
 
+namespace internal {
+class ArmStore;  // arms.h: URDF texts, chains and reachable sets for `reachable by`
+}
+
 /// A property's default in a class body (or a built-in default when `expr` is null).
 struct PropertyDefault {
   std::string name;
@@ -100,6 +104,9 @@ struct CompiledProgram {
   /// For each module, its class table (name -> class) as seen by its creation sites.
   std::vector<std::map<std::string, const ClassInfo*>> class_scopes;
   int main_module = 0;
+  /// The arms `reachable by` uses: URDF files read at compile time, chains and reachable sets
+  /// built on first use (thread-safe).
+  std::shared_ptr<internal::ArmStore> arms;
 
   const ModuleInfo& main() const { return *modules[main_module]; }
 };

@@ -8,16 +8,17 @@
 #include <unordered_map>
 
 #include "geometry/sampling.h"
+#include "geometry/union.h"
 #include "lang/lang.h"
 #include "lang/value.h"
 
 namespace prs::lang {
 
 /// The position sampler of a creation site whose region and obstacles are fixed (see
-/// ObjectPlan::region_fixed): the region minus the fixed obstacles, as disjoint convex pieces.
+/// ObjectPlan::region_fixed): the region minus the fixed obstacles, as disjoint convex pieces
+/// (every piece's sampler built, so the placement may be read by any thread).
 struct FixedPlacement {
-  std::vector<geometry::RegionSampler> pieces;
-  std::vector<double> cumulative_measure;  // running sums of the pieces' measures
+  geometry::UnionSampler sampler;
 };
 
 class RunCache {

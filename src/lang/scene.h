@@ -37,11 +37,22 @@ struct SceneObject {
   std::string DisplayName(int index) const;
 };
 
+/// A region an object's position was drawn from, kept only when RunOptions::record_regions is
+/// set (for pictures: `prs render --show-regions`). Also a camera's view (its frustum within
+/// the workspace) for the view specifiers that name it.
+struct PlacedRegion {
+  int object = -1;      // the object placed in it, or the camera whose view it is
+  std::string what;     // "position of c", "view of camera"
+  std::vector<geometry::ConvexRegion> pieces_W;  // world frame, disjoint interiors
+};
+
 struct Scene {
   std::vector<SceneObject> objects;
   std::vector<std::pair<std::string, Value>> params;
   /// The region the main module binds to `workspace` (null when none), e.g. for drawing.
   RegionPtr workspace;
+  /// Filled only when RunOptions::record_regions is set.
+  std::vector<PlacedRegion> regions;
 };
 
 /// Why an attempt was rejected. Reasons are grouped by `kind` and `culprit` for accounting.
@@ -53,6 +64,8 @@ enum class RejectionKind {
   kOutsideRegion,  // a point-valued position is not inside another specifier's region
   kRelativePosition,  // naive mode: a left of / ahead of / ... specifier does not hold
   kContainment,       // naive mode: an on / completely on / in specifier does not hold
+  kOccluded,          // `visible from`: another object hides (part of) the object from the camera
+  kVisible,           // `not visible from`: the camera sees the object's centre
 };
 
 struct Rejection {
