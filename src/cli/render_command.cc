@@ -25,6 +25,7 @@ struct RenderArgs {
   std::string view = "overview";
   std::string depth_output;
   bool grid = false;
+  bool show_regions = false;
   bool quiet = false;
 };
 
@@ -34,6 +35,7 @@ std::vector<render::RenderScene> SampleScenes(const lang::CompiledProgram& progr
   const std::atomic<bool> never_cancel{false};
   sampling::BatchOptions options = MakeBatchOptions(args.sampling, args.range.count, never_cancel);
   options.start = args.range.start;
+  options.sample.run.record_regions = args.show_regions;
   std::vector<sampling::SampledScene> sampled;
   sampling::SampleBatch(program, options, {nullptr, [&](sampling::BatchScene&& s) {
                                              sampled.push_back(std::move(s.sampled));
@@ -124,6 +126,9 @@ std::string CheckOptionCombinations(const RenderArgs& args, const render::View& 
     return "--depth needs a camera view (--view camera:NAME)";
   if (!args.depth_output.empty() && args.grid)
     return "--depth writes one depth image per scene and cannot be used with --grid";
+  if (args.show_regions && IsScenesFile(args.scenario.file))
+    return "--show-regions needs the .prs scenario (a scenes file does not keep the regions its "
+           "objects were drawn from)";
   return "";
 }
 
@@ -214,6 +219,9 @@ CommandRunner ConfigureRenderCommand(CLI::App& command) {
       ->check(CheckedBy(render::ParseView))
       ->capture_default_str();
   command.add_flag("--grid", args->grid, "all scenes in one picture, in rows of ceil(sqrt(N))");
+  command.add_flag("--show-regions", args->show_regions,
+                   "also draw the region each object's position was drawn from (green) and the "
+                   "views of cameras that view specifiers name (orange)");
   command
       .add_option("--depth", args->depth_output,
                   "also write the camera's depth as a 16-bit PNG in millimetres")

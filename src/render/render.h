@@ -48,9 +48,18 @@ struct RenderObject {
 /// A straight edge of the workspace outline (world frame, metres).
 using Segment = std::pair<Eigen::Vector3d, Eigen::Vector3d>;
 
+/// The outline of a region drawn into the picture (prs render --show-regions): where an
+/// object's position was drawn from, or what a camera sees.
+struct RegionOutline {
+  std::string what;  // "position of c", "view of camera"
+  bool is_view = false;
+  std::vector<Segment> edges;
+};
+
 struct RenderScene {
   std::vector<RenderObject> objects;
   std::vector<Segment> workspace_edges;  // empty when the program binds no workspace
+  std::vector<RegionOutline> regions;    // empty unless regions were recorded
   std::string caption;                   // drawn in the top-left corner when non-empty
 };
 

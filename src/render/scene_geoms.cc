@@ -134,6 +134,7 @@ SceneExtent CalcSceneExtent(const RenderScene& scene) {
 
 int CountSceneGeoms(const RenderScene& scene) {
   int count = 1 + static_cast<int>(scene.workspace_edges.size());  // floor, outline
+  for (const RegionOutline& region : scene.regions) count += static_cast<int>(region.edges.size());
   for (const RenderObject& o : scene.objects)
     count += o.shape == ObjectShape::kCamera ? 1 + kFrustumEdges
              : o.shape == ObjectShape::kBox  ? 1 + kBoxEdges
@@ -151,6 +152,13 @@ void AddSceneGeoms(const RenderScene& scene, const RenderObject* viewpoint,
   }
   for (const auto& [a_W, b_W] : scene.workspace_edges)
     AddLine(out, a_W, b_W, line_width, {0.3f, 0.38f, 0.55f, 1.0f});
+  // Regions in bright colours, thinner than the workspace: positions green, views orange.
+  for (const RegionOutline& region : scene.regions) {
+    const Rgba color = region.is_view ? Rgba{0.95f, 0.6f, 0.1f, 1.0f} : Rgba{0.1f, 0.75f, 0.3f, 1.0f};
+    for (const auto& [a_W, b_W] : region.edges) {
+      if ((b_W - a_W).norm() > 1e-9) AddLine(out, a_W, b_W, line_width * 0.6, color);
+    }
+  }
 }
 
 }  // namespace prs::render

@@ -174,6 +174,13 @@ RenderScene MakeRenderScene(const lang::Scene& scene, std::vector<std::string>* 
     result.objects.push_back(std::move(object));
   }
   if (scene.workspace) result.workspace_edges = CalcOutlineEdges(*scene.workspace);
+  for (const lang::PlacedRegion& region : scene.regions) {
+    RegionOutline outline{region.what, region.what.starts_with("view"), {}};
+    for (const geometry::ConvexRegion& piece : region.pieces_W) {
+      for (const Segment& edge : CalcOutlineEdges(piece)) outline.edges.push_back(edge);
+    }
+    result.regions.push_back(std::move(outline));
+  }
   return result;
 }
 

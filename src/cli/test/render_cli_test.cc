@@ -100,6 +100,19 @@ TEST_F(RenderCommandTest, BadViewAndSizeAreLocatedUsageErrors) {
   EXPECT_NE(depth.err.find("--depth needs a camera view"), std::string::npos) << depth.err;
 }
 
+TEST_F(RenderCommandTest, ShowRegionsNeedsAScenario) {
+  ASSERT_EQ(Run({"render", Example("table_cube.prs"), "--show-regions", "--size", "64x48", "-o",
+                 Out("r.png")})
+                .exit_code,
+            0);
+  EXPECT_TRUE(fs::exists(Out("r.png")));
+  const std::string scenes = Out("scenes.jsonl");
+  ASSERT_EQ(Run({"sample", Example("table_cube.prs"), "-n", "1", "-o", scenes}).exit_code, 0);
+  const Result r = Run({"render", scenes, "--show-regions", "-o", Out("s.png")});
+  EXPECT_EQ(r.exit_code, 2);
+  EXPECT_NE(r.err.find("--show-regions needs the .prs scenario"), std::string::npos) << r.err;
+}
+
 TEST_F(RenderCommandTest, UnknownCameraNameListsTheSceneCameras) {
   const Result r =
       Run({"render", Example("table_cube.prs"), "--view", "camera:eye", "-o", Out("c.png")});

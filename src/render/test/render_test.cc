@@ -108,6 +108,35 @@ TEST(RenderTest, RedCubeSeenFromTopAppearsAtItsProjectedCentre) {
   EXPECT_FALSE(IsRed(PixelAt(image, int(away.x()), int(away.y()))));
 }
 
+TEST(RenderTest, RegionOutlinesAreDrawnInTheirColours) {
+  // A 0.6 m square outline on the table top, left of the cube: green where its edge is, and
+  // the table's grey there without it. A view outline is orange.
+  RenderOptions options;
+  options.view = ParseView("top");
+  RenderScene scene = MakeTableScene();
+  const Image plain = SharedRenderer().Render(scene, options);
+  RegionOutline square{"position of c", false, {}};
+  const Eigen::Vector3d corners[4] = {{-0.8, -0.3, 0.5}, {-0.2, -0.3, 0.5}, {-0.2, 0.3, 0.5}, {-0.8, 0.3, 0.5}};
+  for (int i = 0; i < 4; ++i) square.edges.emplace_back(corners[i], corners[(i + 1) % 4]);
+  scene.regions.push_back(square);
+  const Image drawn = SharedRenderer().Render(scene, options);
+  const CameraPose pose = CalcViewPose(scene, options);
+  const Eigen::Vector2d edge = Project({-0.5, 0.3, 0.5}, pose, options);  // middle of the top edge
+  auto is_green = [](const std::array<int, 3>& c) { return c[1] > 120 && c[1] > c[0] + 40 && c[1] > c[2] + 40; };
+  bool green = false;
+  for (int dy = -2; dy <= 2; ++dy) green = green || is_green(PixelAt(drawn, int(edge.x()), int(edge.y()) + dy));
+  EXPECT_TRUE(green);
+  EXPECT_FALSE(is_green(PixelAt(plain, int(edge.x()), int(edge.y()))));
+  scene.regions.back().is_view = true;
+  const Image view = SharedRenderer().Render(scene, options);
+  bool orange = false;
+  for (int dy = -2; dy <= 2; ++dy) {
+    const auto c = PixelAt(view, int(edge.x()), int(edge.y()) + dy);
+    orange = orange || (c[0] > 150 && c[1] > 60 && c[2] < 80 && c[0] > c[1] + 40);
+  }
+  EXPECT_TRUE(orange);
+}
+
 TEST(RenderTest, CameraDepthAtTheCentreIsTheDistanceToTheSurfaceBelow) {
   const RenderScene scene = MakeTableSceneWithCamera();
   RenderOptions options;

@@ -62,6 +62,33 @@ TEST(SceneInputTest, SampledSceneKeepsItsWorkspaceOutline) {
   EXPECT_NE(unknown[0].find("nocolour"), std::string::npos);
 }
 
+TEST(SceneInputTest, RecordedRegionsBecomeOutlines) {
+  // With record_regions, the cube's region (the rectangle it may sit on) and the camera's view
+  // become outlines; without it, none.
+  lang::DiagnosticEngine diagnostics;
+  auto program = lang::CompileText(
+      "r.prs",
+      "class Board:\n    width: 1\n    length: 0.5\n    height: 0.1\nclass Cube:\n    width: 0.1\n"
+      "    length: 0.1\n    height: 0.1\nb = Board at Vector3D(0, 0, 0.05)\n"
+      "cam = Cube at Vector3D(0, 0, 2), facing Vector3D(0, 0, -1), with allowCollisions True\n"
+      "c = Cube on b, in view of cam\n",
+      {}, diagnostics);
+  ASSERT_FALSE(diagnostics.has_errors());
+  EXPECT_TRUE(MakeRenderScene(sampling::SampleScene(*program, 1, 0).scene).regions.empty());
+  sampling::SampleOptions options;
+  options.run.record_regions = true;
+  const RenderScene scene = MakeRenderScene(sampling::SampleScene(*program, 1, 0, options).scene);
+  ASSERT_EQ(scene.regions.size(), 2u);
+  EXPECT_EQ(scene.regions[0].what, "view of cam");
+  EXPECT_TRUE(scene.regions[0].is_view);
+  EXPECT_EQ(scene.regions[0].edges.size(), 12u);  // a frustum: a truncated pyramid
+  EXPECT_EQ(scene.regions[1].what, "position of c");
+  EXPECT_FALSE(scene.regions[1].is_view);
+  double perimeter = 0;
+  for (const auto& [a, b] : scene.regions[1].edges) perimeter += (b - a).norm();
+  EXPECT_NEAR(perimeter, 2 * (1 + 0.5), 1e-9);  // the board's top (wholly in view)
+}
+
 TEST(SceneInputTest, OutlineOfARectangleAndOfUnboundedRegions) {
   const auto rect = geometry::ConvexRegion::MakeRect3D(Eigen::Vector3d::Zero(),
                                                        Eigen::Matrix3d::Identity(), 2, 1);
