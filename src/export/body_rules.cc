@@ -67,6 +67,19 @@ double ReadMass(const ObjectFacts& facts, Shape shape, const std::string& label,
   return value->As<double>();
 }
 
+// A camera's vertical field of view, the value `in view of` uses (camera/camera.h): the
+// simulator's camera must see what the sampler was told it sees.
+double ReadFovy(const ObjectFacts& facts, const std::string& label, std::vector<std::string>& warnings) {
+  const lang::Value* value = Find(facts.properties, "fovy_deg");
+  if (value == nullptr) return 45;
+  if (!value->Is<double>() || !(value->As<double>() > 0 && value->As<double>() < 180)) {
+    warnings.push_back(fmt::format("{}: fovy_deg {} is not a number of degrees between 0 and 180; "
+                                   "exported as 45", label, lang::Repr(*value)));
+    return 45;
+  }
+  return value->As<double>();
+}
+
 // Principal moments of a solid box or cylinder about its centre, in its own axes.
 Eigen::Vector3d CalcInertiaDiag(Shape shape, const Eigen::Vector3d& size, double mass_kg) {
   const double w = size.x(), l = size.y(), h = size.z();
@@ -105,6 +118,7 @@ Body MakeBody(const ObjectFacts& facts, NameTable& names, std::vector<std::strin
   body.mass_kg = ReadMass(facts, body.shape, label, warnings);
   body.inertia_diag = CalcInertiaDiag(body.shape, body.size, body.mass_kg);
   body.collides = !facts.allow_collisions && body.shape != Shape::kNone;
+  body.fovy_deg = ReadFovy(facts, label, warnings);
   return body;
 }
 

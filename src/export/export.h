@@ -48,6 +48,9 @@ struct Body {
   double mass_kg = 0;  // > 0: a free body; 0: static (fixed in the world)
   Eigen::Vector3d inertia_diag = Eigen::Vector3d::Zero();  // kg m^2 about the centre, local axes
   bool collides = true;  // false for allowCollisions objects: visual geometry only
+  /// A camera's vertical field of view (degrees), from its `fovy_deg` property as the
+  /// language's `in view of` reads it; 45 when it has none.
+  double fovy_deg = 45;
 
   bool is_free() const { return mass_kg > 0; }
   /// A cylinder's radius: it fits the box the sampler placed.

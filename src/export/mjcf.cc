@@ -46,8 +46,9 @@ void AppendBody(const Body& body, std::string& out) {
   }
   if (IsCamera(body)) {
     fmt::format_to(std::back_inserter(out),
-                   "      <camera name=\"{}\" quat=\"{} {} 0 0\" fovy=\"45\"/>\n", body.name,
-                   FormatNumber(std::sqrt(0.5)), FormatNumber(std::sqrt(0.5)));
+                   "      <camera name=\"{}\" quat=\"{} {} 0 0\" fovy=\"{}\"/>\n", body.name,
+                   FormatNumber(std::sqrt(0.5)), FormatNumber(std::sqrt(0.5)),
+                   FormatNumber(body.fovy_deg));
   }
   out += "    </body>\n";
 }
