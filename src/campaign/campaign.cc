@@ -6,6 +6,7 @@
 #include <fmt/format.h>
 #include <unistd.h>
 
+#include <algorithm>
 #include <chrono>
 #include <filesystem>
 #include <fstream>
@@ -156,6 +157,20 @@ CampaignSpec InitCampaign(const std::string& dir, const lang::CompiledProgram& p
                         std::string(program.sources.text(static_cast<lang::FileId>(f))));
     if (f == 0) spec.main_file = "spec/" + name;
   }
+  // URDF files, where the copied modules will look for them: by the name the program gives.
+  for (const lang::ProgramResource& r : lang::ListResources(program)) {
+    const fs::path name(r.name);
+    const bool inside = name.is_relative() && std::none_of(name.begin(), name.end(), [](const fs::path& part) {
+      return part == "..";
+    });
+    if (!inside) {
+      throw CampaignError("the arm file '" + r.name + "' is not below the scenario's directory, so "
+                          "a campaign cannot carry it; put it next to the .prs file and name it "
+                          "by a relative path");
+    }
+    fs::create_directories((fs::path(dir) / "spec" / name).parent_path(), error);
+    WriteFileAtomically(fmt::format("{}/spec/{}", dir, r.name), r.text);
+  }
   spec.spec_hash = search::CalcSpecHash(program);
   spec.id = fmt::format(
       "{:016x}", search::CalcFnv1a(
@@ -210,6 +225,7 @@ std::unique_ptr<lang::CompiledProgram> CompileCampaign(const std::string& dir,
   lang::CompileOptions options;
   options.search_path = {dir + "/spec"};
   options.param_overrides = spec.params;
+  options.cache_dir = lang::DefaultCacheDir();
   auto program = lang::CompileFile(dir + "/" + spec.main_file, options, diagnostics);
   if (diagnostics.has_errors()) {
     std::string text;

@@ -82,6 +82,10 @@ std::string CalcSpecHash(const lang::CompiledProgram& program) {
   std::map<std::string, std::string> params(program.param_overrides.begin(),
                                             program.param_overrides.end());
   for (const auto& [name, value] : params) hash = CalcFnv1a(name + "=" + value + ";", hash);
+  // The URDF files its arms name shape its scenes too (none: the hash is as it always was).
+  for (const lang::ProgramResource& r : lang::ListResources(program)) {
+    hash = CalcFnv1a(r.name + "\n" + r.text + std::string("\0", 1), hash);
+  }
   return fmt::format("{:016x}", hash);
 }
 
