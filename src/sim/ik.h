@@ -1,6 +1,6 @@
 // One Panda arm in a MuJoCo model: where its joints, servos and tool centre point live, and
 // setting and reading its joints. Inverse kinematics is kinematics/ik.h's, on the arm's chain
-// (motion.h's MoveTcpTo), independent of MuJoCo.
+// (motion.h's PlanDownwardPath), independent of MuJoCo.
 #pragma once
 
 #include <Eigen/Core>

@@ -3,6 +3,7 @@
 
 #include <cmath>
 #include <numbers>
+#include <optional>
 
 #include "sim/control.h"
 
@@ -37,17 +38,54 @@ void MoveJointsTo(World& world, const WorldArm& arm, const PandaJointVector& q_g
   SimulateFor(model, data, arms, kSettle_s);
 }
 
-kinematics::IkResult MoveTcpTo(World& world, const WorldArm& arm,
-                               const Eigen::Isometry3d& X_WTarget, double duration_s) {
+namespace {
+
+// The waypoints at one yaw, the first from q_start (after `restarts` random starts if needed).
+TcpPlan PlanAtYaw(const WorldArm& arm, const std::vector<TcpWaypoint>& waypoints, double yaw,
+                  const PandaJointVector& q_start, int restarts) {
   static const kinematics::Chain panda = kinematics::MakePandaChain();
+  TcpPlan plan;
+  plan.yaw_rad = yaw;
+  Eigen::VectorXd q = kinematics::ToVector(q_start);
+  for (size_t i = 0; i < waypoints.size(); ++i) {
+    Eigen::Isometry3d X_WTarget = Eigen::Isometry3d::Identity();
+    X_WTarget.translation() = waypoints[i].p_W;
+    X_WTarget.linear() = CalcDownwardGrasp(yaw);
+    const kinematics::IkTarget target = kinematics::MakePoseTarget(arm.X_WBase.inverse() * X_WTarget);
+    const kinematics::IkResult ik =
+        i == 0 && restarts > 0
+            ? kinematics::SolveIkWithRestarts(panda, target, q, {}, restarts, /*seed=*/1)
+            : kinematics::SolveIk(panda, target, q);
+    if (!ik.converged) {
+      plan.failed = static_cast<int>(i);
+      plan.failure = ik;
+      return plan;
+    }
+    q = ik.q;
+    plan.q.push_back(kinematics::ToPandaJoints(q));
+  }
+  return plan;
+}
+
+}  // namespace
+
+TcpPlan PlanDownwardPath(const World& world, const WorldArm& arm,
+                         const std::vector<TcpWaypoint>& waypoints, int restarts) {
   PandaJointVector q_now;
   for (int i = 0; i < kPandaJoints; ++i) q_now[i] = world.data->ctrl[arm.index.actuator[i]];
-  // The defaults are the tolerances and steps the simulator has always used: 2 mm, 0.02 rad,
-  // damping 0.05, 300 iterations, 0.2 rad per joint per step.
-  const kinematics::IkTarget target = kinematics::MakePoseTarget(arm.X_WBase.inverse() * X_WTarget);
-  const kinematics::IkResult ik = kinematics::SolveIk(panda, target, kinematics::ToVector(q_now));
-  if (ik.converged) MoveJointsTo(world, arm, kinematics::ToPandaJoints(ik.q), duration_s);
-  return ik;
+  std::optional<TcpPlan> best;
+  for (int tries : {0, restarts}) {
+    for (double yaw : {0.0, kPi / 2, -kPi / 2, kPi}) {
+      TcpPlan plan = PlanAtYaw(arm, waypoints, yaw, q_now, tries);
+      if (plan.failed < 0) return plan;
+      const bool further = !best || plan.failed > best->failed ||
+                           (plan.failed == best->failed &&
+                            plan.failure.position_error_m < best->failure.position_error_m);
+      if (further) best = std::move(plan);
+    }
+    if (restarts <= 0) break;
+  }
+  return *best;
 }
 
 void MoveGripper(World& world, const WorldArm& arm, double opening_m, double duration_s) {

@@ -95,24 +95,29 @@ struct TableCubeController::Episode {
     return *best;
   }
 
-  void MoveOrFail(const WorldArm& arm, const Eigen::Vector3d& p_W, double yaw, double duration_s,
-                  const std::string& what) {
-    Eigen::Isometry3d X = Eigen::Isometry3d::Identity();
-    X.translation() = p_W;
-    X.linear() = CalcDownwardGrasp(yaw);
-    const kinematics::IkResult ik = MoveTcpTo(world, arm, X, duration_s);
-    if (!ik.converged) {
+  // Joint angles for every waypoint at one grasp yaw, or a no-path ending naming the first
+  // waypoint no joint angles were found for.
+  TcpPlan PlanOrFail(const WorldArm& arm, const std::vector<TcpWaypoint>& waypoints) {
+    TcpPlan plan = PlanDownwardPath(world, arm, waypoints);
+    if (plan.failed >= 0) {
       FailAfterSighting("no-path", fmt::format("{} found no joint angles to {} ({:.1f} cm short)",
-                                               arm.robot_name, what, 100 * ik.position_error_m));
+                                               arm.robot_name, waypoints[plan.failed].what,
+                                               100 * plan.failure.position_error_m));
     }
+    return plan;
   }
 
+  // Above the cube, down to it, grip, and lift: planned together, so the grasp's yaw is one
+  // that reaches all three (any quarter turn grips a cube the same way).
   void Pick(const WorldArm& arm, const Eigen::Vector3d& p_cube) {
     const double z_before = TrueCubePosition().z();
-    MoveOrFail(arm, p_cube + Eigen::Vector3d(0, 0, kApproachHeight_m), 0, kMove_s, "above the cube");
-    MoveOrFail(arm, p_cube, 0, kDescend_s, "the cube");
+    const TcpPlan plan = PlanOrFail(arm, {{p_cube + Eigen::Vector3d(0, 0, kApproachHeight_m), "above the cube"},
+                                          {p_cube, "the cube"},
+                                          {p_cube + Eigen::Vector3d(0, 0, kLiftHeight_m), "lift the cube"}});
+    MoveJointsTo(world, arm, plan.q[0], kMove_s);
+    MoveJointsTo(world, arm, plan.q[1], kDescend_s);
     MoveGripper(world, arm, 0.0);
-    MoveOrFail(arm, p_cube + Eigen::Vector3d(0, 0, kLiftHeight_m), 0, kDescend_s, "lift the cube");
+    MoveJointsTo(world, arm, plan.q[2], kDescend_s);
     const double lifted = TrueCubePosition().z() - z_before;
     if (lifted < kLiftHeight_m / 2) {
       FailAfterSighting("poor-grip", fmt::format("{} closed on the cube but lifted it only {:.1f} cm",
@@ -121,11 +126,18 @@ struct TableCubeController::Episode {
   }
 
   void Release(const WorldArm& arm, const Eigen::Vector3d& p_W) {
-    MoveOrFail(arm, p_W + Eigen::Vector3d(0, 0, 0.1), 0, kMove_s, "the put-down point");
-    MoveOrFail(arm, p_W, 0, kDescend_s, "the put-down point");
+    const TcpPlan plan = PlanOrFail(arm, {{p_W + Eigen::Vector3d(0, 0, 0.1), "the put-down point"},
+                                          {p_W, "the put-down point"},
+                                          {p_W + Eigen::Vector3d(0, 0, 0.15), "away from the cube"}});
+    MoveJointsTo(world, arm, plan.q[0], kMove_s);
+    MoveJointsTo(world, arm, plan.q[1], kDescend_s);
     MoveGripper(world, arm, kPandaFingerTravel_m);
-    MoveOrFail(arm, p_W + Eigen::Vector3d(0, 0, 0.15), 0, kDescend_s, "away from the cube");
+    MoveJointsTo(world, arm, plan.q[2], kDescend_s);
     MoveJointsTo(world, arm, kPandaReadyPose_rad, kMove_s);  // out of the camera's way
+  }
+
+  void MoveAboveOrFail(const WorldArm& arm, const Eigen::Vector3d& p_W, const std::string& what) {
+    MoveJointsTo(world, arm, PlanOrFail(arm, {{p_W, what}}).q[0], kMove_s);
   }
 };
 
@@ -205,7 +217,7 @@ TaskOutcome TableCubeController::Run(const lang::Scene& scene) {
     const exporting::Body* tray = FindNearest(world.scene, "Tray", second.X_WBase.translation());
     if (!tray) End("missed-tray", "the scene has no tray to drop the cube into");
     const Eigen::Vector3d p_drop = tray->p_WO + Eigen::Vector3d(0, 0, tray->size.z() / 2 + 0.1);
-    ep.MoveOrFail(second, p_drop, 0, kMove_s, "above the destination tray");
+    ep.MoveAboveOrFail(second, p_drop, "above the destination tray");
     MoveGripper(world, second, kPandaFingerTravel_m, 1.0);
     if (!IsInTray(*tray, ep.TrueCubePosition())) {
       End("missed-tray", fmt::format("the cube ended outside {} after the drop", tray->name));

@@ -53,7 +53,7 @@ TEST(PandaTest, MujocoBodyTreeMatchesTheDhTable) {
 }
 
 // The simulator's inverse kinematics is kinematics::SolveIk on the Panda's chain in the arm's
-// base frame (motion.h's MoveTcpTo): its solutions put MuJoCo's tool centre point on the target.
+// base frame (motion.h's PlanDownwardPath): its solutions put MuJoCo's tool centre point on the target.
 TEST(PandaTest, InverseKinematicsReachesTargetsInFrontOfTheArm) {
   const PandaNames names{"a_"};
   const Eigen::Isometry3d X_WBase(Eigen::Translation3d(0.1, -0.2, 0.8) *
