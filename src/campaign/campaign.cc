@@ -137,6 +137,19 @@ CampaignSpec InitCampaign(const std::string& dir, const lang::CompiledProgram& p
   } else if (spec.batch > 0) {
     throw CampaignError("a generation size is for search campaigns only");
   }
+  // Files the program reads besides its modules must sit below its directory to be carried.
+  const std::vector<lang::ProgramResource> resources = lang::ListResources(program);
+  for (const lang::ProgramResource& r : resources) {
+    const fs::path name(r.name);
+    const bool inside = name.is_relative() && std::none_of(name.begin(), name.end(), [](const fs::path& part) {
+      return part == "..";
+    });
+    if (!inside) {
+      throw CampaignError("the arm file '" + r.name + "' is not below the scenario's directory, so "
+                          "a campaign cannot carry it; put it next to the .prs file and name it "
+                          "by a relative path");
+    }
+  }
   std::error_code error;
   if (fs::exists(dir, error) && !fs::is_empty(dir, error)) {
     throw CampaignError(dir + " exists and is not empty; a campaign needs a directory of its own");
@@ -158,17 +171,8 @@ CampaignSpec InitCampaign(const std::string& dir, const lang::CompiledProgram& p
     if (f == 0) spec.main_file = "spec/" + name;
   }
   // URDF files, where the copied modules will look for them: by the name the program gives.
-  for (const lang::ProgramResource& r : lang::ListResources(program)) {
-    const fs::path name(r.name);
-    const bool inside = name.is_relative() && std::none_of(name.begin(), name.end(), [](const fs::path& part) {
-      return part == "..";
-    });
-    if (!inside) {
-      throw CampaignError("the arm file '" + r.name + "' is not below the scenario's directory, so "
-                          "a campaign cannot carry it; put it next to the .prs file and name it "
-                          "by a relative path");
-    }
-    fs::create_directories((fs::path(dir) / "spec" / name).parent_path(), error);
+  for (const lang::ProgramResource& r : resources) {
+    fs::create_directories((fs::path(dir) / "spec" / r.name).parent_path(), error);
     WriteFileAtomically(fmt::format("{}/spec/{}", dir, r.name), r.text);
   }
   spec.spec_hash = search::CalcSpecHash(program);

@@ -120,5 +120,98 @@ TEST_F(CampaignTest, BadShardsAndAnEditedSpecAreFound) {
   }
 }
 
+// A three-joint arm (a turntable, a shoulder and an elbow) for a scenario of a campaign.
+constexpr const char* kArmUrdf = R"(<?xml version="1.0"?>
+<robot name="arm">
+  <link name="base"/><link name="column"/><link name="upper"/><link name="lower"/><link name="tip"/>
+  <joint name="turn" type="revolute"><parent link="base"/><child link="column"/>
+    <origin xyz="0 0 0.1"/><axis xyz="0 0 1"/><limit lower="-3" upper="3" effort="1" velocity="1"/></joint>
+  <joint name="shoulder" type="revolute"><parent link="column"/><child link="upper"/>
+    <origin xyz="0 0 0.2"/><axis xyz="0 1 0"/><limit lower="-1.5" upper="1.5" effort="1" velocity="1"/></joint>
+  <joint name="elbow" type="revolute"><parent link="upper"/><child link="lower"/>
+    <origin xyz="0.3 0 0"/><axis xyz="0 1 0"/><limit lower="-2.5" upper="2.5" effort="1" velocity="1"/></joint>
+  <joint name="tip" type="fixed"><parent link="lower"/><child link="tip"/><origin xyz="0.25 0 0"/></joint>
+</robot>
+)";
+
+constexpr const char* kArmScenario = R"(
+class Table:
+    width: 1.2
+    length: 0.8
+    height: 0.8
+class Arm:
+    width: 0.1
+    length: 0.1
+    height: 0.1
+    arm: "robots/arm.urdf"
+class Cube:
+    width: 0.05
+    length: 0.05
+    height: 0.05
+t = Table at V3D(0, 0, 0.4)
+a = Arm on (top back t)
+c = Cube on t, reachable by a with grasp "any"
+)";
+
+TEST_F(CampaignTest, TheUrdfFilesOfItsArmsTravelWithTheCampaign) {
+  const fs::path scenario = fs::path(dir_ + "_scenario");
+  fs::create_directories(scenario / "robots");
+  std::ofstream(scenario / "robots" / "arm.urdf") << kArmUrdf;
+  std::ofstream(scenario / "main.prs") << kArmScenario;
+  lang::DiagnosticEngine diagnostics;
+  auto program = lang::CompileFile((scenario / "main.prs").string(), {}, diagnostics);
+  ASSERT_FALSE(diagnostics.has_errors());
+  CampaignSpec spec;
+  spec.kind = "sample";
+  spec.seed = 3;
+  spec.count = 6;
+  spec.shard_size = 3;
+  spec.scenario_words = {"main.prs"};
+  spec.version = "test";
+  spec = InitCampaign(dir_, *program, spec);
+  std::vector<std::string> single;
+  sampling::BatchOptions batch;
+  batch.seed = 3;
+  batch.count = 6;
+  sampling::SampleBatch(*program, batch, {.prepare = {}, .consume = [&](sampling::BatchScene&& s) {
+                                            single.push_back(output::FormatSceneJson(s.sampled));
+                                          }});
+  fs::remove_all(scenario);  // the campaign must not need the original files
+  EXPECT_TRUE(fs::exists(dir_ + "/spec/robots/arm.urdf"));
+  const auto copy = CompileCampaign(dir_, spec);
+  for (uint64_t k = 0; k < 2; ++k) RunShard(dir_, spec, *copy, k, nullptr, 1, nullptr);
+  EXPECT_EQ(MergeShards(dir_, spec, false, nullptr), single);
+  // A changed arm is a changed scenario.
+  std::ofstream(dir_ + "/spec/robots/arm.urdf", std::ios::app) << "<!-- edited -->\n";
+  EXPECT_THROW(CompileCampaign(dir_, spec), CampaignError);
+}
+
+TEST_F(CampaignTest, AnArmFileOutsideTheScenarioIsRefused) {
+  const fs::path root = fs::path(dir_ + "_outside");
+  fs::create_directories(root / "scenario");
+  std::ofstream(root / "arm.urdf") << kArmUrdf;
+  std::string text = kArmScenario;
+  text.replace(text.find("robots/arm.urdf"), 15, "../arm.urdf");
+  std::ofstream(root / "scenario" / "main.prs") << text;
+  lang::DiagnosticEngine diagnostics;
+  auto program = lang::CompileFile((root / "scenario" / "main.prs").string(), {}, diagnostics);
+  ASSERT_FALSE(diagnostics.has_errors());
+  CampaignSpec spec;
+  spec.kind = "sample";
+  spec.count = 2;
+  spec.shard_size = 1;
+  spec.scenario_words = {"main.prs"};
+  try {
+    InitCampaign(dir_, *program, spec);
+    ADD_FAILURE() << "an arm file above the scenario cannot be carried";
+  } catch (const CampaignError& e) {
+    EXPECT_NE(std::string(e.what()).find("'../arm.urdf' is not below the scenario's directory"),
+              std::string::npos)
+        << e.what();
+  }
+  EXPECT_FALSE(fs::exists(dir_)) << "a refused campaign leaves nothing behind";
+  fs::remove_all(root);
+}
+
 }  // namespace
 }  // namespace prs::campaign
