@@ -1,15 +1,20 @@
 #!/usr/bin/env bash
 # Builds a libFuzzer target (scripts/build.sh fuzz) and fuzzes it for a bounded time.
-# Usage: scripts/fuzz.sh [seconds] [long|scenes]   (default 30 s, the language)
+# Usage: scripts/fuzz.sh [seconds] [long|scenes|urdf]   (default 30 s, the language)
 #   (none): the language stage (prs_lang_fuzz), inputs up to 4 KiB, from a scratch corpus in
 #           build-fuzz/ seeded with examples/, tests/lang/bad/ and tests/fuzz/corpus/;
 #   long:   the language stage with inputs up to 1 MiB, from a separate corpus seeded with
 #           100,000-term-class chains (tests/fuzz/make_long_seeds.py), for the stack limits;
 #   scenes: the readers of other programs' text (prs_scene_json_fuzz): scenes-file lines as
 #           prs export and prs render read them, and controller answers, seeded with
-#           tests/fuzz/scene_corpus/.
+#           tests/fuzz/scene_corpus/;
+#   urdf:   URDF robot descriptions as `reachable by` loads them (prs_urdf_fuzz), seeded with
+#           the kinematics tests' URDF files.
+# The language fuzzer computes reachable sets (`reachable by`) on a 10 cm grid, cached in
+# build-fuzz/reach-cache.
 # Replays the target's regression inputs (tests/fuzz/regressions/) first. Exits non-zero on any
-# crash, hang (> 5 s per input; 20 s in the long run), leak, out-of-memory or sanitizer report;
+# crash, hang (> 5 s per input; 20 s in the long run, 30 s for the language's ordinary run),
+# leak, out-of-memory or sanitizer report;
 # artifacts go to build-fuzz/artifacts/.
 set -euo pipefail
 cd "$(dirname "$0")/.."
@@ -18,13 +23,16 @@ mode=${2:-}
 case "$mode" in
   ""|long) target=prs_lang_fuzz; regression_glob='*.prs' ;;
   scenes)  target=prs_scene_json_fuzz; regression_glob='*.json*' ;;
-  *) echo "usage: scripts/fuzz.sh [seconds] [long|scenes]" >&2; exit 2 ;;
+  urdf)    target=prs_urdf_fuzz; regression_glob='*.urdf' ;;
+  *) echo "usage: scripts/fuzz.sh [seconds] [long|scenes|urdf]" >&2; exit 2 ;;
 esac
 scripts/build.sh fuzz "$target"
 
 fuzzer=build-fuzz/src/fuzz/$target
 artifacts=build-fuzz/artifacts
 export ASAN_OPTIONS=detect_leaks=1 UBSAN_OPTIONS=print_stacktrace=1
+export LSAN_OPTIONS=suppressions=$PWD/tests/fuzz/lsan.supp  # urdfdom's own leak (see there)
+export PRS_CACHE_DIR=$PWD/build-fuzz/reach-cache
 if [[ $mode == long ]]; then
   corpus=build-fuzz/corpus-long
   log=build-fuzz/fuzz-long.log
@@ -33,6 +41,14 @@ if [[ $mode == long ]]; then
   export PRS_FUZZ_MAX_BYTES=$((1024 * 1024))
   flags=(-timeout=20 -rss_limit_mb=2048 -max_len=$PRS_FUZZ_MAX_BYTES -len_control=0
          -dict=tests/fuzz/prs.dict -artifact_prefix="$artifacts"/ -print_final_stats=1)
+elif [[ $mode == urdf ]]; then
+  corpus=build-fuzz/corpus-urdf
+  log=build-fuzz/fuzz-urdf.log
+  mkdir -p "$corpus" "$artifacts"
+  cp src/kinematics/test/data/*.urdf "$corpus"/
+  for f in tests/lang/bad/data/*.urdf; do cp "$f" "$corpus/bad_program_$(basename "$f")"; done
+  flags=(-timeout=5 -rss_limit_mb=2048 -max_len=8192 -dict=tests/fuzz/urdf.dict
+         -artifact_prefix="$artifacts"/ -print_final_stats=1)
 elif [[ $mode == scenes ]]; then
   corpus=build-fuzz/corpus-scenes
   log=build-fuzz/fuzz-scenes.log
@@ -45,7 +61,9 @@ else
   log=build-fuzz/fuzz.log
   mkdir -p "$corpus" "$artifacts"
   cp examples/*.prs tests/lang/bad/*.prs tests/fuzz/corpus/*.prs "$corpus"/
-  flags=(-timeout=5 -rss_limit_mb=2048 -max_len=4096 -dict=tests/fuzz/prs.dict
+  # 30 s per input: an input is otherwise milliseconds, but one that needs a reachable set not
+  # yet in build-fuzz/reach-cache computes it, several seconds under the sanitizers.
+  flags=(-timeout=30 -rss_limit_mb=2048 -max_len=4096 -dict=tests/fuzz/prs.dict
          -artifact_prefix="$artifacts"/ -print_final_stats=1)
 fi
 

@@ -4,8 +4,8 @@
 # (tests/slurm/campaign_test.sh), the Python package with a Dask LocalCluster
 # (scripts/test_python.sh), the same C++ tests under AddressSanitizer +
 # UndefinedBehaviorSanitizer, then libFuzzer: the language stage for 20 s of ordinary inputs and
-# 10 s of inputs up to 1 MiB (long chains), and the readers of scenes files and controller
-# answers for 10 s (scripts/fuzz.sh).
+# 10 s of inputs up to 1 MiB (long chains), the readers of scenes files and controller
+# answers for 10 s, and URDF robot descriptions for 10 s (scripts/fuzz.sh).
 # Exits non-zero if anything fails.
 set -euo pipefail
 cd "$(dirname "$0")/.."
@@ -20,3 +20,4 @@ ASAN_OPTIONS=detect_leaks=1 UBSAN_OPTIONS=print_stacktrace=1 \
 scripts/fuzz.sh 20
 scripts/fuzz.sh 10 long
 scripts/fuzz.sh 10 scenes
+scripts/fuzz.sh 10 urdf

@@ -71,6 +71,11 @@ extern "C" int LLVMFuzzerTestOneInput(const uint8_t* data, size_t size) {
   prs::lang::CompileOptions options;
   options.search_path = {PRS_FUZZ_EXAMPLES_DIR};
   options.file_system = &kFileSystem;
+  // `reachable by` on the coarsest grid (a second or two under the sanitizers, not a minute),
+  // cached where scripts/fuzz.sh points PRS_CACHE_DIR, so each arm and options set is computed
+  // once per fuzzing run; the inputs exercise the code, not the cells' precision.
+  options.reach_resolution_m = 0.1;
+  options.cache_dir = prs::lang::DefaultCacheDir();
   prs::lang::DiagnosticEngine diagnostics;
   auto program = prs::lang::CompileText(
       "fuzz.prs", std::string(reinterpret_cast<const char*>(data), size), options, diagnostics);

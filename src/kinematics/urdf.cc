@@ -183,6 +183,55 @@ urdf::LinkConstSharedPtr FindOnlyLeaf(const urdf::LinkConstSharedPtr& base,
                         "), so the tool is ambiguous: name the tool link");
 }
 
+// urdfdom builds its links with shared pointers both ways (a link holds its child links and
+// joints and its parent joint), so a description whose joints make a loop leaves a cycle that
+// no owner frees. Cut every link's pointers when the model is done with.
+class ModelReleaser {
+ public:
+  explicit ModelReleaser(urdf::ModelInterfaceSharedPtr model) : model_(std::move(model)) {}
+  ~ModelReleaser() {
+    if (!model_) return;
+    for (auto& [name, link] : model_->links_) {
+      link->child_links.clear();
+      link->child_joints.clear();
+      link->parent_joint.reset();
+    }
+  }
+  ModelReleaser(const ModelReleaser&) = delete;
+  ModelReleaser& operator=(const ModelReleaser&) = delete;
+
+ private:
+  urdf::ModelInterfaceSharedPtr model_;
+};
+
+// Refuses links that are not a tree: a link that is the child of two joints, or one from which
+// following parents never reaches the root (urdfdom accepts a joint whose parent and child are
+// the same link, for one). Walks over the links are then finite.
+void CheckIsTree(const urdf::ModelInterface& model, const std::string& label) {
+  const size_t links = model.links_.size();
+  for (const auto& [name, link] : model.links_) {
+    for (const urdf::LinkSharedPtr& child : link->child_links) {
+      if (child && child->getParent() != link) {
+        throw KinematicsError(label + ": link '" + child->name + "' is the child of more than one "
+                              "joint (of link '" + name + "' and of link '" +
+                              (child->getParent() ? child->getParent()->name : std::string("?")) +
+                              "'); the joints must connect the links as a tree");
+      }
+    }
+  }
+  for (const auto& [name, link] : model.links_) {
+    urdf::LinkConstSharedPtr at = link;
+    for (size_t steps = 0; at && at->getParent(); ++steps) {
+      if (steps > links) {
+        throw KinematicsError(label + ": the joints do not connect the links as a tree: going up "
+                              "from link '" + name + "' runs round a loop; each link needs one "
+                              "parent, and no link may be its own ancestor");
+      }
+      at = at->getParent();
+    }
+  }
+}
+
 // The joints from base down to tool, in that order.
 std::vector<urdf::JointConstSharedPtr> FindPath(const urdf::LinkConstSharedPtr& base,
                                                 const urdf::LinkConstSharedPtr& tool,
@@ -289,8 +338,31 @@ Chain BuildChain(const std::vector<urdf::JointConstSharedPtr>& path, const std::
 
 }  // namespace
 
+// The byte offset of the first thing in `text` that is not UTF-8 (or a NUL byte), or npos.
+// TinyXML 2.6.2 trusts a multi-byte sequence's lead byte and reads past the end of a text that
+// stops inside one, so a description is checked before any XML parser sees it.
+size_t FindInvalidUtf8(const std::string& text) {
+  for (size_t i = 0; i < text.size();) {
+    const auto byte = static_cast<unsigned char>(text[i]);
+    if (byte == 0) return i;
+    const int length = byte < 0x80 ? 1 : (byte >> 5) == 0x6 ? 2 : (byte >> 4) == 0xE ? 3
+                     : (byte >> 3) == 0x1E ? 4 : 0;
+    if (length == 0 || i + length > text.size()) return i;
+    for (int k = 1; k < length; ++k) {
+      if ((static_cast<unsigned char>(text[i + k]) >> 6) != 0x2) return i;
+    }
+    i += length;
+  }
+  return std::string::npos;
+}
+
 Chain LoadUrdfChain(const std::string& xml_text, const std::string& file_label,
                     const std::string& base_link, const std::string& tool_link) {
+  if (const size_t bad = FindInvalidUtf8(xml_text); bad != std::string::npos) {
+    const auto line = 1 + std::count(xml_text.begin(), xml_text.begin() + bad, '\n');
+    throw KinematicsError(file_label + ": not UTF-8 text (line " + std::to_string(line) + ", byte " +
+                          std::to_string(bad + 1) + "): a URDF file is an XML document in UTF-8");
+  }
   TiXmlDocument document;
   document.Parse(xml_text.c_str());
   if (document.Error()) {
@@ -315,6 +387,8 @@ Chain LoadUrdfChain(const std::string& xml_text, const std::string& file_label,
   std::string reason;
   const urdf::ModelInterfaceSharedPtr model = ParseQuietly(xml_text, &reason);
   if (!model) throw KinematicsError(file_label + ": not a valid URDF: " + reason);
+  const ModelReleaser releaser(model);
+  CheckIsTree(*model, file_label);
   const urdf::LinkConstSharedPtr base =
       base_link.empty() ? model->getRoot() : FindLink(*model, base_link, file_label, "base");
   if (!base) throw KinematicsError(file_label + ": the URDF has no root link");

@@ -160,6 +160,28 @@ TEST(UrdfTest, MimicJointOnTheChain) {
                 {"joint 'follower' mimics joint 'leader'"});
 }
 
+TEST(UrdfTest, TextThatIsNotUtf8) {
+  // A text that stops inside a multi-byte character made TinyXML read past its end (found by
+  // the fuzzer); a NUL byte would silently cut the document short.
+  for (const std::string& text : {std::string("<robot name=\"r\"><link name=\"a\xe9"),
+                                  std::string("<robot>\n<link name=\"a\"/>\0</robot>", 31),
+                                  std::string("<robot name=\"\xff\"/>")}) {
+    try {
+      LoadUrdfChain(text, "bytes.urdf");
+      FAIL() << "expected an error";
+    } catch (const KinematicsError& e) {
+      EXPECT_NE(std::string(e.what()).find("bytes.urdf: not UTF-8 text"), std::string::npos) << e.what();
+    }
+  }
+  EXPECT_NO_THROW(LoadUrdfChain(ReadData("toy_arm.urdf") + "<!-- caf\xc3\xa9 -->", "toy.urdf"));
+}
+
+TEST(UrdfTest, JointsThatMakeALoop) {
+  // urdfdom accepts a joint from a link to itself; walking such a tree would never end.
+  ExpectMessage(LoadError("joint_loop.urdf"), "joint_loop.urdf",
+                {"connect the links as a tree", "link 'b'"});
+}
+
 TEST(UrdfTest, ChainWithoutMovableJoint) {
   ExpectMessage(LoadError("no_movable_joint.urdf"), "no_movable_joint.urdf", {"no movable joint"});
 }
