@@ -6,7 +6,8 @@ import probrobscene as prs
 from conftest import EXAMPLES, run_prs
 
 
-@pytest.mark.parametrize("example", ["table_cube.prs", "constructs.prs"])
+@pytest.mark.parametrize("example", ["table_cube.prs", "constructs.prs",
+                                     "table_cube_reachable_visible.prs"])
 @pytest.mark.parametrize("seed,start", [(0, 0), (1, 0), (7, 5), (2**64 - 1, 3)])
 def test_batch_and_single_scenes_match_prs_sample(prs_binary, example, seed, start):
     path = EXAMPLES / example

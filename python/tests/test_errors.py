@@ -99,3 +99,20 @@ def test_values_nested_by_a_loop_raise_when_sampled():
     scenario = prs.loads("x = ()\nfor i in range(5000):\n    x = (x,)\n", name="nest.prs")
     with pytest.raises(prs.ScenarioError, match="nested more than 1000 levels"):
         scenario.sample()
+
+
+def test_arms_and_cameras_are_checked_with_located_errors(tmp_path):
+    header = "from model import *\nt = Table on V3D(0, 0, 0)\n"
+    not_an_arm = tmp_path / "arm.prs"
+    not_an_arm.write_text(header + "c = Cube on t, reachable by t\n")
+    with pytest.raises(prs.ScenarioError) as caught:
+        prs.load(not_an_arm, search_path=[EXAMPLES]).sample(0, 0)
+    assert (caught.value.line, caught.value.id) == (3, "not-an-arm")
+    assert "t is a Table, which is not an arm" in caught.value.message
+    wide = tmp_path / "camera.prs"
+    wide.write_text(header + "cam = Camera at V3D(0, 0, 2), facing V3D(0, 0, -1), with fovy_deg 190\n"
+                    "d = Cube on t, in view of cam\n")
+    with pytest.raises(prs.ScenarioError) as caught:
+        prs.load(wide, search_path=[EXAMPLES]).sample(0, 0)
+    assert (caught.value.line, caught.value.id) == (4, "bad-camera")
+    assert "between 0° and 180°, not 190°" in caught.value.message
