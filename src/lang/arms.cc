@@ -55,8 +55,9 @@ void CollectArmLiterals(const CompiledProgram& program, std::vector<ArmLiteral>*
 
 }  // namespace
 
-ArmStore::ArmStore(std::string cache_dir, std::function<void(const std::string&)> on_note)
-    : cache_dir_(std::move(cache_dir)), on_note_(std::move(on_note)) {}
+ArmStore::ArmStore(std::string cache_dir, double resolution_m,
+                   std::function<void(const std::string&)> on_note)
+    : cache_dir_(std::move(cache_dir)), resolution_m_(resolution_m), on_note_(std::move(on_note)) {}
 
 void ArmStore::AddUrdf(const std::string& name, std::string path, std::string text) {
   std::lock_guard<std::mutex> lock(mutex_);
@@ -102,8 +103,9 @@ std::shared_ptr<const kinematics::Chain> ArmStore::GetChain(const std::string& n
 }
 
 std::shared_ptr<const ArmReach> ArmStore::GetReach(
-    const std::shared_ptr<const kinematics::Chain>& chain_ptr, const kinematics::ReachOptions& options) {
+    const std::shared_ptr<const kinematics::Chain>& chain_ptr, kinematics::ReachOptions options) {
   const kinematics::Chain& chain = *chain_ptr;
+  if (resolution_m_ > 0) options.resolution_m = resolution_m_;
   const ReachKey key{chain_ptr.get(), static_cast<int>(options.grasp), options.margin_m,
                      options.approach_m, options.resolution_m, options.max_sector_rad};
   std::lock_guard<std::mutex> lock(mutex_);
@@ -131,7 +133,8 @@ std::shared_ptr<const ArmReach> ArmStore::GetReach(
 
 void LoadArmFiles(CompiledProgram& program, const CompileOptions& options,
                   DiagnosticEngine& diagnostics) {
-  program.arms = std::make_shared<ArmStore>(options.cache_dir, options.on_note);
+  program.arms = std::make_shared<ArmStore>(options.cache_dir, options.reach_resolution_m,
+                                            options.on_note);
   std::vector<ArmLiteral> literals;
   CollectArmLiterals(program, &literals);
   const FileSystem& fs = options.file_system ? *options.file_system : RealFileSystem();

@@ -33,7 +33,8 @@ struct ArmReach {
 /// The program's arms: thread-safe; owned by the CompiledProgram.
 class ArmStore {
  public:
-  ArmStore(std::string cache_dir, std::function<void(const std::string&)> on_note);
+  ArmStore(std::string cache_dir, double resolution_m,
+           std::function<void(const std::string&)> on_note);
 
   /// Keeps a URDF file's text under the string the program names it by (its `arm` value).
   void AddUrdf(const std::string& name, std::string path, std::string text);
@@ -51,13 +52,14 @@ class ArmStore {
   /// from the disk cache) the first time it is asked for. Throws kinematics::KinematicsError
   /// for bad options.
   std::shared_ptr<const ArmReach> GetReach(const std::shared_ptr<const kinematics::Chain>& chain,
-                                           const kinematics::ReachOptions& options);
+                                           kinematics::ReachOptions options);
 
  private:
   struct Urdf {
     std::string path, text;
   };
   std::string cache_dir_;
+  double resolution_m_ = 0;  // 0: ReachOptions' default
   std::function<void(const std::string&)> on_note_;
   std::mutex mutex_;  // guards the maps; computing a set holds it (others wait for it anyway)
   std::map<std::string, Urdf> urdfs_;

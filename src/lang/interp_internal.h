@@ -239,6 +239,11 @@ class Interpreter {
                                       SourceSpan span);
   [[noreturn]] void Reject(RejectionKind kind, std::string culprit, SourceSpan span,
                            std::string detail = "");
+  // Whether this scene already reported (kind, culprit), so its detail need not be worked out
+  // again (RunOptions::explained). Never true before a draw (a certain failure explains itself).
+  bool IsExplained(RejectionKind kind, const std::string& culprit) const {
+    return draws_ > 0 && options_.explained && options_.explained->count({kind, culprit}) > 0;
+  }
 
   const CompiledProgram& program_;
   geometry::Rng& rng_;

@@ -5,6 +5,7 @@
 #include <functional>
 #include <memory>
 #include <optional>
+#include <set>
 #include <string>
 #include <variant>
 #include <vector>
@@ -35,6 +36,9 @@ struct CompileOptions {
   const FileSystem* file_system = nullptr;  // null: the real one
   /// Where reachable sets (`reachable by`) are cached between runs; empty: no disk cache.
   std::string cache_dir;
+  /// The grid spacing of reachable sets (metres); 0 keeps kinematics::ReachOptions' default.
+  /// Coarser grids compute faster and cover less: for the fuzzer, not for users.
+  double reach_resolution_m = 0;
   /// Called (from any sampling thread, one call at a time) with notes for the user that arise
   /// while the program runs, e.g. "panda's reachable set (...): computed in 1.2 s".
   std::function<void(const std::string&)> on_note;
@@ -126,6 +130,11 @@ struct RunOptions {
   /// Keep the region each position was drawn from in Scene::regions (for pictures); never
   /// changes the scene.
   bool record_regions = false;
+  /// Rejections (kind, culprit) this scene's earlier attempts already reported: one of them
+  /// again is rejected without working out its explanation (Rejection::detail and, for an
+  /// empty region, the span of the specifier that emptied it), which only the first of each
+  /// is kept for. Optional; never changes which attempts are rejected.
+  const std::set<std::pair<RejectionKind, std::string>>* explained = nullptr;
 };
 
 /// The outcome of one attempt: a scene, or the reason it was rejected.

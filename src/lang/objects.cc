@@ -208,10 +208,12 @@ void Interpreter::CheckCollisions(int index) {
     if (other == index || !completed_[other] || !p.cls->has_box || p.allow_collisions) continue;
     if (geometry::DoBoxesOverlap(box, BoxOf(other))) {
       const int first = std::min(index, other), second = std::max(index, other);
-      Reject(RejectionKind::kCollision,
-             scene_.objects[first].DisplayName(first) + " and " +
-                 scene_.objects[second].DisplayName(second),
-             scene_.objects[index].span, DescribeBox(first) + " overlaps " + DescribeBox(second));
+      std::string culprit = scene_.objects[first].DisplayName(first) + " and " +
+                            scene_.objects[second].DisplayName(second);
+      std::string detail = IsExplained(RejectionKind::kCollision, culprit)
+                               ? ""
+                               : DescribeBox(first) + " overlaps " + DescribeBox(second);
+      Reject(RejectionKind::kCollision, std::move(culprit), scene_.objects[index].span, std::move(detail));
     }
   }
 }

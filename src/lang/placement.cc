@@ -409,6 +409,8 @@ std::string Interpreter::DescribeFootprintMismatch(const PositionConstraint& c, 
 void Interpreter::RejectEmptyRegion(RejectionKind kind, std::string culprit, SourceSpan culprit_span,
                                     const std::vector<PositionConstraint>& constraints,
                                     const ConvexRegion* workspace, int index, SourceSpan span) {
+  // Explained once per scene: an attempt rejected the same way again only counts.
+  if (IsExplained(kind, culprit)) Reject(kind, std::move(culprit), culprit_span);
   Diagnostic why = ExplainEmptyRegion(constraints, workspace, index, span);
   // Before any random draw the failure repeats in every attempt: report it at once.
   if (draws_ == 0) throw ScenarioError(std::move(why));

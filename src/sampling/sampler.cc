@@ -2,6 +2,8 @@
 // located failure message when the attempt limit is reached.
 #include "sampling/sampler.h"
 
+#include <set>
+
 namespace prs::sampling {
 
 void RejectionCounts::Add(const lang::Rejection& rejection) {
@@ -75,6 +77,8 @@ SampledScene SceneSampler::Sample(uint64_t seed, uint64_t index) {
   run.cache = cache_.get();
   const AttemptPoints* points = options_.points;
   std::vector<double> u(points ? points->dimension() : 0);
+  std::set<std::pair<lang::RejectionKind, std::string>> explained;
+  run.explained = &explained;
   while (result.attempts < options_.max_attempts) {
     const bool at_point = points && points->Point(seed, index, result.attempts, u.data());
     run.coordinates = at_point ? lang::CoordinateInput{u.data(), static_cast<int>(u.size())}
@@ -90,6 +94,7 @@ SampledScene SceneSampler::Sample(uint64_t seed, uint64_t index) {
     if (options_.live) options_.live->rejections.fetch_add(1, std::memory_order_relaxed);
     const lang::Rejection& rejection = std::get<lang::Rejection>(attempt);
     result.rejections.Add(rejection);
+    explained.emplace(rejection.kind, rejection.culprit);
     // Nothing random ran, so retrying would only repeat this rejection.
     if (rejection.certain) ThrowCertainFailure(rejection);
   }
