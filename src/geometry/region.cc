@@ -319,6 +319,11 @@ ConvexRegion ErodeByRound(const ConvexRegion& region, const Eigen::Vector3d& axi
   return r;
 }
 
+ConvexRegion internal::AttachCanon(ConvexRegion region, RegionCanon canon) {
+  region.canon_ = std::make_shared<const RegionCanon>(std::move(canon));
+  return region;
+}
+
 const internal::RegionCanon& ConvexRegion::canon() const {
   if (!canon_) {
     if (empty_) {

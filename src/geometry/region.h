@@ -36,8 +36,12 @@ inline constexpr double kGeometricTolerance = 1e-9;
 /// A region reaching farther than this from the origin (metres) is reported as unbounded.
 inline constexpr double kUnboundedExtent = 1e5;
 
+class ConvexRegion;
 namespace internal {
 struct RegionCanon;
+/// `region` with its canonical form given instead of computed (for callers that derived it
+/// exactly another way: unions slicing a piece by a plane's polygon, union.cc).
+ConvexRegion AttachCanon(ConvexRegion region, RegionCanon canon);
 }
 
 /// A convex set in 3D: {x : E x = f} ∩ {x : n_i·x <= d_i} ∩ balls. A cheap value type:
@@ -142,6 +146,7 @@ class ConvexRegion {
                                  const Eigen::Vector3d& half_extents);
   friend ConvexRegion ErodeByRound(const ConvexRegion& region, const Eigen::Vector3d& axis,
                                    double radius);
+  friend ConvexRegion internal::AttachCanon(ConvexRegion region, internal::RegionCanon canon);
   bool RawContains(const Eigen::Vector3d& p_W, double tolerance) const;
   std::string DescribeGeneric() const;
 

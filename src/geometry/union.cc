@@ -6,6 +6,7 @@
 #include <cmath>
 #include <cstdio>
 #include <limits>
+#include <optional>
 #include <stdexcept>
 
 #include "geometry/polytope.h"
@@ -139,16 +140,87 @@ std::vector<Eigen::Vector3d> CalcVerticesIn(const ConvexRegion& region_W, const 
   return vertices;
 }
 
+// A planar region's polygon in its own plane's coordinates, for slicing pieces by clipping it
+// instead of canonicalizing each slice from scratch (the slices lie in the same plane).
+struct PlaneSlicer {
+  AffineHull hull;
+  std::vector<Eigen::Vector2d> polygon;  // counter-clockwise in hull coordinates
+};
+
+std::optional<PlaneSlicer> MakePlaneSlicer(const ConvexRegion& region) {
+  const internal::RegionCanon& c = region.canon();
+  if (c.empty || !c.bounded || c.dimension != 2 || c.contains_slack > 0 || !c.balls.empty()) {
+    return std::nullopt;
+  }
+  PlaneSlicer slicer{c.hull, {}};
+  for (const Eigen::Vector3d& v : c.vertices) {
+    slicer.polygon.push_back(c.hull.basis.transpose() * (v - c.hull.p_origin));
+  }
+  return slicer;
+}
+
+enum class Clip { kEmpty, kSlice, kUndecided };
+
+// piece ∩ region (planar, `slicer`'s) by clipping the region's polygon with the piece's
+// half-spaces: the same set the general intersection gives, with its canonical form made here.
+// kUndecided when a result touches or is as thin as the tolerances, which the general path's
+// rules decide.
+Clip SliceByClipping(const ConvexRegion& piece, const ConvexRegion& region, const PlaneSlicer& s,
+                     ConvexRegion* slice) {
+  if (!piece.equalities().empty() || !piece.balls().empty()) return Clip::kUndecided;
+  std::vector<Eigen::Vector2d> polygon = s.polygon, scratch;
+  for (const HalfSpace& h : piece.half_spaces()) {
+    const Eigen::Vector2d a = s.hull.basis.transpose() * h.normal;
+    const double b = h.offset - h.normal.dot(s.hull.p_origin), norm = a.norm();
+    if (norm < 1e-9) {  // a face parallel to the plane: all of it or none of it satisfies
+      if (b > 1e-8) continue;
+      return b < -1e-8 ? Clip::kEmpty : Clip::kUndecided;
+    }
+    double least = std::numeric_limits<double>::infinity();  // metres, the most inside vertex
+    for (const Eigen::Vector2d& p : polygon) least = std::min(least, (a.dot(p) - b) / norm);
+    if (least > 1e-8) return Clip::kEmpty;
+    if (least > -1e-8) return Clip::kUndecided;  // touching: the tolerance rules decide
+    if (!internal::ClipPolygon(a, b, &polygon, &scratch)) return Clip::kUndecided;
+  }
+  double area = 0, longest = 0;
+  Eigen::Vector2d centroid = Eigen::Vector2d::Zero();
+  for (size_t i = 0; i < polygon.size(); ++i) {
+    const Eigen::Vector2d& p = polygon[i];
+    const Eigen::Vector2d& q = polygon[(i + 1) % polygon.size()];
+    area += 0.5 * (p.x() * q.y() - q.x() * p.y());
+    longest = std::max(longest, (q - p).norm());
+    centroid += p / static_cast<double>(polygon.size());
+  }
+  // Thinner than a micrometre: the general path collapses slivers by its own rules.
+  if (polygon.size() < 3 || !(area > 1e-6 * longest)) return Clip::kUndecided;
+  internal::RegionCanon canon;
+  canon.empty = false;
+  canon.bounded = true;
+  canon.dimension = 2;
+  canon.hull = s.hull;
+  for (const Eigen::Vector2d& p : polygon) canon.vertices.push_back(s.hull.p_origin + s.hull.basis * p);
+  canon.polytope_measure = canon.measure = area;
+  canon.measure_exact = true;
+  canon.p_interior = s.hull.p_origin + s.hull.basis * centroid;
+  *slice = internal::AttachCanon(Intersect(piece, region), std::move(canon));
+  return Clip::kSlice;
+}
+
 void AppendSlices(const PieceSet& a, const ConvexRegion& region_L,
                   const std::vector<Eigen::Vector3d>& vertices_L, const Eigen::AlignedBox3d& query_L,
                   std::vector<Slice>* out) {
   std::vector<int> candidates;
   a.FindPiecesNear(query_L, &candidates);
+  const std::optional<PlaneSlicer> slicer =
+      candidates.empty() ? std::nullopt : MakePlaneSlicer(region_L);
   for (int i : candidates) {
     if (IsBoxOutside(a.bounds(i), region_L)) continue;
     const ConvexRegion& piece = a.pieces()[i];
     if (!vertices_L.empty() && IsSeparatedFrom(piece, vertices_L)) continue;
-    ConvexRegion slice = Intersect(piece, region_L);
+    ConvexRegion slice;
+    const Clip clip = slicer ? SliceByClipping(piece, region_L, *slicer, &slice) : Clip::kUndecided;
+    if (clip == Clip::kEmpty) continue;
+    if (clip == Clip::kUndecided) slice = Intersect(piece, region_L);
     if (slice.IsEmpty()) continue;
     const int dimension = slice.dimension();
     if (dimension < piece.dimension() && IsSliceOwnedByNeighbour(piece, slice)) continue;

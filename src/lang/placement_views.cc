@@ -185,41 +185,52 @@ void Interpreter::CheckSightLines() {
   for (const SightCheck& check : sight_checks_) {
     const SceneObject& o = scene_.objects[check.index];
     const Vector3d p_eye = check.X_WC.translation();
+    const bool not_visible = check.specifier->kind == SpecifierKind::kNotVisibleFrom;
+    std::vector<Vector3d> targets{o.p_WO};
+    if (check.specifier->kind == SpecifierKind::kCompletelyVisibleFrom && o.cls->has_box) {
+      targets = camera::CalcSightTargets(BoxOf(check.index), p_eye);
+    }
+    // The other objects' boxes that can block a line of sight: only those meeting the lines'
+    // bounding box can (in scene order, so the first blocker named does not depend on this).
+    Eigen::AlignedBox3d lines(p_eye);
+    for (const Vector3d& p_target : targets) lines.extend(p_target);
     std::vector<geometry::OrientedBox> occluders;
     std::vector<int> owners;
     for (int j = 0; j < static_cast<int>(scene_.objects.size()); ++j) {
       const SceneObject& x = scene_.objects[j];
       if (j == check.index || j == check.camera || !x.cls->has_box) continue;
-      occluders.push_back(BoxOf(j));
+      const geometry::OrientedBox box = BoxOf(j);
+      const Vector3d reach = box.R_WB.cwiseAbs() * box.half_extents;
+      if (!lines.intersects(Eigen::AlignedBox3d(box.p_center - reach, box.p_center + reach))) continue;
+      occluders.push_back(box);
       owners.push_back(j);
     }
-    const std::string seen = o.DisplayName(check.index);
-    const std::string camera_name = check.camera >= 0
-                                        ? scene_.objects[check.camera].DisplayName(check.camera)
-                                        : DescribeSpecifier(*check.specifier, program_.sources);
-    if (check.specifier->kind == SpecifierKind::kNotVisibleFrom) {
+    // Names for a rejection's message, made only when one is rejected.
+    const auto seen = [&] { return o.DisplayName(check.index); };
+    const auto camera_name = [&] {
+      return check.camera >= 0 ? scene_.objects[check.camera].DisplayName(check.camera)
+                               : DescribeSpecifier(*check.specifier, program_.sources);
+    };
+    if (not_visible) {
       const bool in_view = camera::CalcViewFrustum(check.X_WC, check.intrinsics).Contains(o.p_WO, 0);
       if (in_view && camera::FindOccluder(p_eye, o.p_WO, occluders) < 0) {
-        Reject(RejectionKind::kVisible, seen + " visible from " + camera_name, check.specifier->span,
-               "nothing hides the centre of " + seen + " from " + camera_name);
+        Reject(RejectionKind::kVisible, seen() + " visible from " + camera_name(),
+               check.specifier->span,
+               "nothing hides the centre of " + seen() + " from " + camera_name());
       }
       continue;
-    }
-    std::vector<Vector3d> targets{o.p_WO};
-    if (check.specifier->kind == SpecifierKind::kCompletelyVisibleFrom && o.cls->has_box) {
-      targets = camera::CalcSightTargets(BoxOf(check.index), p_eye);
     }
     for (const Vector3d& p_target : targets) {
       const int blocker = camera::FindOccluder(p_eye, p_target, occluders);
       if (blocker < 0) continue;
       const int j = owners[blocker];
       Reject(RejectionKind::kOccluded,
-             seen + " hidden from " + camera_name + " by " + scene_.objects[j].DisplayName(j),
+             seen() + " hidden from " + camera_name() + " by " + scene_.objects[j].DisplayName(j),
              check.specifier->span,
-             DescribeBox(j) + " stands between " + camera_name + " and " +
-                 (targets.size() == 1 ? "the centre of " + seen : "a point of " + seen) +
-                 " at (" + Format(p_target.x()) + ", " + Format(p_target.y()) + ", " +
-                 Format(p_target.z()) + ")");
+             DescribeBox(j) + " stands between " + camera_name() + " and " +
+                 (targets.size() == 1 ? "the centre of " : "a point of ") + seen() + " at (" +
+                 Format(p_target.x()) + ", " + Format(p_target.y()) + ", " + Format(p_target.z()) +
+                 ")");
     }
   }
 }

@@ -108,7 +108,8 @@ c = Cube on t, reachable by r
   SceneSampler sampler(*program);
   std::vector<double> xs, ys;
   for (int i = 0; i < 3000; ++i) {
-    const SceneObject& c = Find(sampler.Sample(3, i).scene, "c");
+    const SampledScene sampled = sampler.Sample(3, i);
+    const SceneObject& c = Find(sampled.scene, "c");
     xs.push_back(c.p_WO.x());
     ys.push_back(c.p_WO.y());
   }
