@@ -57,7 +57,8 @@ std::string FormatSampleSummary(const sampling::BatchSummary& summary, double se
   }
   if (!reasons.empty()) text += " (" + reasons + ")";
   const double rate = seconds > 0 ? summary.scenes / seconds : 0.0;
-  return text + fmt::format("; {:.2f} s, {:.0f} scenes/s on {}", seconds, rate,
+  // Whole scenes per second, or tenths below 10 (a first run that computes a reachable set).
+  return text + fmt::format("; {:.2f} s, {:.{}f} scenes/s on {}", seconds, rate, rate < 10 ? 1 : 0,
                             FormatCount(threads, "thread"));
 }
 

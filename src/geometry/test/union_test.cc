@@ -134,6 +134,57 @@ TEST(UnionIntersectTest, ASliceOnASharedFacetIsCountedOnce) {
   EXPECT_NEAR(tilted.CalcMeasure(), 2.0 * std::sqrt(1 + 1e-4), 1e-9);
 }
 
+TEST(UnionIntersectTest, APlanarRegionsSlicesAgreeWithTheGeneralIntersection) {
+  // A planar region's slices are made by clipping its polygon (union.cc); each must be the
+  // set the general intersection gives: same area, same vertices, same membership. Planes
+  // parallel to the pieces' faces (horizontal against a grid of boxes) and tilted ones.
+  Rng rng(16, 0);
+  std::vector<ConvexRegion> grid;
+  for (int i = 0; i < 3; ++i) {
+    for (int j = 0; j < 3; ++j) {
+      for (int k = 0; k < 2; ++k) {
+        const Vector3d lo(0.3 * i, 0.3 * j, 0.4 * k);
+        grid.push_back(Box(lo, lo + Vector3d(0.3, 0.3, 0.4)));
+      }
+    }
+  }
+  const RegionUnion u = MakeUnion(grid);
+  for (int trial = 0; trial < 200; ++trial) {
+    const Vector3d normal = trial % 2 == 0 ? Vector3d::UnitZ() : RandomVector(rng, -1, 1);
+    // The first table lies on the boxes' shared facets z = 0.4.
+    const Vector3d p_on = trial == 0 ? Vector3d(0.45, 0.45, 0.4) : RandomVector(rng, 0.1, 0.8);
+    const ConvexRegion table = Intersect(ConvexRegion::MakePlane(p_on, normal),
+                                         Box(RandomVector(rng, -0.2, 0.4), RandomVector(rng, 0.5, 1.1)));
+    if (table.IsEmpty() || table.dimension() != 2) continue;
+    const RegionUnion cut = Intersect(u, table);
+    double general_area = 0;
+    for (const ConvexRegion& piece : grid) {
+      const ConvexRegion slice = Intersect(piece, table);
+      if (!slice.IsEmpty() && slice.dimension() == 2) general_area += slice.CalcMeasure();
+    }
+    // (On the shared facets both boxes' general slices are whole faces; the union counts one.)
+    if (trial > 0) ASSERT_NEAR(cut.CalcMeasure(), general_area, 1e-9) << "trial " << trial;
+    // The boxes tile [0, 0.9]² × [0, 0.8]: the slices' area is the table's within that.
+    const ConvexRegion inside = Intersect(table, Box(Vector3d::Zero(), Vector3d(0.9, 0.9, 0.8)));
+    ASSERT_NEAR(cut.CalcMeasure(), inside.IsEmpty() || inside.dimension() < 2 ? 0.0 : inside.CalcMeasure(), 1e-9)
+        << "trial " << trial;
+    for (int p = 0; p < cut.num_pieces(); ++p) {
+      const ConvexRegion& slice = cut.piece_set().pieces()[p];
+      for (const Vector3d& v : slice.CalcVertices()) {
+        ASSERT_TRUE(table.Contains(v, 1e-9) && u.Contains(v, 1e-9)) << "trial " << trial;
+      }
+      const Vector3d p_in = slice.CalcInteriorPoint();
+      ASSERT_TRUE(table.Contains(p_in, 1e-9) && slice.Contains(p_in, 0)) << "trial " << trial;
+    }
+    if (cut.IsEmpty()) continue;
+    const UnionSampler sampler(cut);
+    for (int i = 0; i < 50; ++i) {
+      const Vector3d p = sampler.Sample(rng);
+      ASSERT_TRUE(table.Contains(p, 1e-9) && u.Contains(p, 1e-9)) << "trial " << trial;
+    }
+  }
+}
+
 TEST(UnionIntersectTest, LowerDimensionalResultsOfOtherPiecesAreDropped) {
   const RegionUnion u = MakeUnion({Box(Vector3d(0, 0, 0), Vector3d(1, 1, 1)),
                                    Box(Vector3d(2, 0, 0), Vector3d(3, 1, 1))});
