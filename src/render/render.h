@@ -43,6 +43,11 @@ struct RenderObject {
   Eigen::Vector3d dimensions = Eigen::Vector3d::Zero();  // width (x), length (y), height (z)
   ObjectShape shape = ObjectShape::kBox;
   Rgba color = {0.75f, 0.72f, 0.66f, 1.0f};
+  // Cameras: the vertical field of view (degrees) and width / height of what they see (the
+  // object's fovy_deg and aspect, as `in view of` and MJCF export read them), for the frustum
+  // drawn at the camera and for a view through it.
+  double fovy_deg = 45.0;
+  double aspect = 4.0 / 3.0;
 };
 
 /// A straight edge of the workspace outline (world frame, metres).
@@ -82,7 +87,7 @@ struct RenderOptions {
   int width = 640;
   int height = 480;
   View view;
-  double camera_fovy_deg = 45.0;  // vertical field of view of camera objects and framings
+  double camera_fovy_deg = 45.0;  // vertical field of view of the framings (overview, top, front)
 };
 
 /// A pinhole camera pose: the point it looks from, its look axis and its up axis (world).

@@ -138,9 +138,10 @@ Image Renderer::Render(const RenderScene& scene, const RenderOptions& options, D
   const RenderObject* viewpoint = options.view.kind == ViewKind::kCamera
                                       ? &FindViewpointObject(scene, options.view.camera_name)
                                       : nullptr;  // a camera does not see its own body
-  AddSceneGeoms(scene, viewpoint, extent, s.floor_texture, options.camera_fovy_deg, s.model,
-                s.scene);
-  PlaceCameraAndLights(s.scene, s.context, pose, extent, options.camera_fovy_deg);
+  AddSceneGeoms(scene, viewpoint, extent, s.floor_texture, s.model, s.scene);
+  // Through a camera, its own field of view (the picture's size sets the aspect).
+  const double fovy_deg = viewpoint ? viewpoint->fovy_deg : options.camera_fovy_deg;
+  PlaceCameraAndLights(s.scene, s.context, pose, extent, fovy_deg);
   const mjrRect viewport = {0, 0, options.width, options.height};
   mjr_render(viewport, &s.scene, &s.context);
   if (!scene.caption.empty())

@@ -40,15 +40,15 @@ void AddLine(mjvScene& out, const Eigen::Vector3d& a_W, const Eigen::Vector3d& b
   AddSolid(out, mjGEOM_BOX, {width_m, width_m, d_W.norm() / 2}, (a_W + b_W) / 2, R_W, rgba);
 }
 
-// A camera: its body, and a wire frustum along its look axis (local +y, up +z) so that the
-// direction it faces shows in the picture.
-void AddCamera(mjvScene& out, const RenderObject& camera, double fovy_deg) {
+// A camera: its body, and a wire frustum along its look axis (local +y, up +z), opening at the
+// camera's own field of view, so that the direction it faces and what it sees show.
+void AddCamera(mjvScene& out, const RenderObject& camera) {
   const Eigen::Matrix3d R_WO = camera.R_WO.toRotationMatrix();
   Eigen::Vector3d body = camera.dimensions;
   if (body.isZero()) body = Eigen::Vector3d::Constant(0.05);
   AddSolid(out, mjGEOM_BOX, body / 2, camera.p_WO, R_WO, camera.color);
-  const double half_z = kFrustumLength_m * std::tan(fovy_deg * M_PI / 360.0);
-  const double half_x = half_z * 4.0 / 3.0;
+  const double half_z = kFrustumLength_m * std::tan(camera.fovy_deg * M_PI / 360.0);
+  const double half_x = half_z * camera.aspect;
   const Rgba frustum = {0.95f, 0.6f, 0.1f, 1.0f};
   Eigen::Vector3d corners_W[4];
   for (int i = 0; i < 4; ++i) {
@@ -82,7 +82,7 @@ void AddBoxEdges(mjvScene& out, const RenderObject& o, const Eigen::Matrix3d& R_
   }
 }
 
-void AddObject(mjvScene& out, const RenderObject& o, double fovy_deg, double edge_width_m) {
+void AddObject(mjvScene& out, const RenderObject& o, double edge_width_m) {
   const Eigen::Matrix3d R_WO = o.R_WO.toRotationMatrix();
   switch (o.shape) {
     case ObjectShape::kBox:
@@ -97,7 +97,7 @@ void AddObject(mjvScene& out, const RenderObject& o, double fovy_deg, double edg
     case ObjectShape::kPoint:
       return AddSolid(out, mjGEOM_SPHERE, Eigen::Vector3d::Constant(0.02), o.p_WO, R_WO, o.color);
     case ObjectShape::kCamera:
-      return AddCamera(out, o, fovy_deg);
+      return AddCamera(out, o);
   }
 }
 
@@ -143,12 +143,12 @@ int CountSceneGeoms(const RenderScene& scene) {
 }
 
 void AddSceneGeoms(const RenderScene& scene, const RenderObject* viewpoint,
-                   const SceneExtent& extent, int floor_texture, double fovy_deg,
-                   const mjModel* model, mjvScene& out) {
+                   const SceneExtent& extent, int floor_texture, const mjModel* model,
+                   mjvScene& out) {
   AddFloor(out, extent, floor_texture, model);
   const double line_width = std::clamp(0.003 * extent.radius_m, 0.0015, 0.015);
   for (const RenderObject& o : scene.objects) {
-    if (&o != viewpoint) AddObject(out, o, fovy_deg, line_width / 2);
+    if (&o != viewpoint) AddObject(out, o, line_width / 2);
   }
   for (const auto& [a_W, b_W] : scene.workspace_edges)
     AddLine(out, a_W, b_W, line_width, {0.3f, 0.38f, 0.55f, 1.0f});

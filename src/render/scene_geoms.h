@@ -26,9 +26,9 @@ int CountSceneGeoms(const RenderScene& scene);
 
 /// Appends the scene's geoms to `out` (which must have room: CountSceneGeoms), except those of
 /// `viewpoint` (the camera looked through; may be null). The floor uses texture
-/// `floor_texture` of `model`; camera frusta open at `fovy_deg`.
+/// `floor_texture` of `model`; camera frusta open at each camera's own field of view.
 void AddSceneGeoms(const RenderScene& scene, const RenderObject* viewpoint,
-                   const SceneExtent& extent, int floor_texture, double fovy_deg,
-                   const mjModel* model, mjvScene& out);
+                   const SceneExtent& extent, int floor_texture, const mjModel* model,
+                   mjvScene& out);
 
 }  // namespace prs::render

@@ -4,6 +4,7 @@
 
 #include <algorithm>
 #include <cctype>
+#include <cmath>
 #include <nlohmann/json.hpp>
 #include <optional>
 #include <stdexcept>
@@ -26,6 +27,7 @@ struct DrawProperties {
   std::string shape_type;
   std::optional<Rgba> color;
   std::string color_text;  // what the scene said, for the unknown-colour note
+  std::optional<double> fovy_deg, aspect;  // a camera's view, when given as numbers
 };
 
 ObjectShape ClassifyShape(const RenderObject& object, const DrawProperties& properties) {
@@ -45,6 +47,11 @@ void ApplyProperties(const DrawProperties& properties, RenderObject& object,
   } else if (!properties.color_text.empty() && unknown_colors) {
     unknown_colors->push_back(properties.color_text);
   }
+  // Values a program could not have compiled with (prs export warns of them) keep the defaults.
+  if (properties.fovy_deg && *properties.fovy_deg > 0 && *properties.fovy_deg < 180)
+    object.fovy_deg = *properties.fovy_deg;
+  if (properties.aspect && *properties.aspect > 0 && std::isfinite(*properties.aspect))
+    object.aspect = *properties.aspect;
 }
 
 std::optional<Rgba> ToRenderColor(const std::optional<exporting::Rgba>& c) {
@@ -67,6 +74,8 @@ DrawProperties ReadDrawProperties(const lang::SceneObject& source) {
       properties.color = ParseColorValue(value);
       properties.color_text = lang::Repr(value);
     }
+    if (name == "fovy_deg" && value.Is<double>()) properties.fovy_deg = value.As<double>();
+    if (name == "aspect" && value.Is<double>()) properties.aspect = value.As<double>();
   }
   return properties;
 }
@@ -129,6 +138,10 @@ DrawProperties ReadDrawProperties(const nlohmann::json& object) {
     properties.model_name = json["model_name"].get<std::string>();
   if (json.contains("shape_type") && json["shape_type"].is_string())
     properties.shape_type = json["shape_type"].get<std::string>();
+  if (json.contains("fovy_deg") && json["fovy_deg"].is_number())
+    properties.fovy_deg = json["fovy_deg"].get<double>();
+  if (json.contains("aspect") && json["aspect"].is_number())
+    properties.aspect = json["aspect"].get<double>();
   if (json.contains("color")) {
     properties.color = ParseColorJson(json["color"]);
     // For the "unknown color" note; a nested value is not dumped (it may be arbitrarily deep).

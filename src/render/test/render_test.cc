@@ -158,6 +158,25 @@ TEST(RenderTest, CameraDepthAtTheCentreIsTheDistanceToTheSurfaceBelow) {
   ExpectCubeRedAndUpRight(image, pose, options);
 }
 
+TEST(RenderTest, ACameraViewOpensAtTheCamerasOwnFieldOfView) {
+  // The same camera with fovy_deg 60: the cube's top lands where a 60° pinhole puts it
+  // (about 60 px from where 45° would), red there and not at the 45° pixel.
+  RenderScene scene = MakeTableSceneWithCamera();
+  scene.objects.back().fovy_deg = 60;
+  RenderOptions options;
+  options.view = ParseView("camera:cam");
+  const Image image = SharedRenderer().Render(scene, options);
+  const CameraPose pose = CalcViewPose(scene, options);
+  RenderOptions at_60 = options, at_45 = options;
+  at_60.camera_fovy_deg = 60;
+  at_45.camera_fovy_deg = 45;
+  const Eigen::Vector2d seen = Project({0.6, 0.3, 0.6}, pose, at_60);
+  const Eigen::Vector2d not_seen = Project({0.6, 0.3, 0.6}, pose, at_45);
+  ASSERT_GT((seen - not_seen).norm(), 40);
+  EXPECT_TRUE(IsRed(PixelAt(image, int(seen.x()), int(seen.y()))));
+  EXPECT_FALSE(IsRed(PixelAt(image, int(not_seen.x()), int(not_seen.y()))));
+}
+
 TEST(RenderTest, UnknownCameraNameListsTheCameras) {
   const RenderScene scene = MakeTableSceneWithCamera();
   RenderOptions options;

@@ -32,6 +32,36 @@ TEST(SceneInputTest, ReadsJsonObjectsShapesAndColours) {
   EXPECT_TRUE(unknown.empty());
 }
 
+TEST(SceneInputTest, ACamerasFieldOfViewComesFromItsProperties) {
+  // From a scenes-file line: fovy_deg and aspect are read, and values no program could
+  // compile with keep the defaults.
+  const auto camera_of = [](const std::string& properties) {
+    const std::string line =
+        R"({"format":"prs-scene/1","objects":[{"name":"cam","class":"Camera","position":[0,0,2],)"
+        R"("orientation":{"quaternion":[1,0,0,0]},"dimensions":[0.05,0.05,0.05],"properties":)" +
+        properties + "}]}";
+    return ParseRenderSceneJson(line, nullptr).objects.at(0);
+  };
+  EXPECT_DOUBLE_EQ(camera_of(R"({"fovy_deg":58,"aspect":1.5})").fovy_deg, 58);
+  EXPECT_DOUBLE_EQ(camera_of(R"({"fovy_deg":58,"aspect":1.5})").aspect, 1.5);
+  EXPECT_DOUBLE_EQ(camera_of(R"({})").fovy_deg, 45);
+  EXPECT_DOUBLE_EQ(camera_of(R"({"fovy_deg":190,"aspect":-1})").fovy_deg, 45);
+  EXPECT_DOUBLE_EQ(camera_of(R"({"fovy_deg":190,"aspect":-1})").aspect, 4.0 / 3.0);
+  EXPECT_DOUBLE_EQ(camera_of(R"({"fovy_deg":"wide"})").fovy_deg, 45);
+  // And from a sampled scene, as the language read them.
+  lang::DiagnosticEngine diagnostics;
+  auto program = lang::CompileText("c.prs",
+                                   "class Camera:\n    fovy_deg: 30\n    aspect: 2\n"
+                                   "c = Camera at Vector3D(0, 0, 1)\n",
+                                   {}, diagnostics);
+  ASSERT_FALSE(diagnostics.has_errors());
+  const RenderScene scene = MakeRenderScene(sampling::SampleScene(*program, 1, 0).scene, nullptr);
+  ASSERT_EQ(scene.objects.size(), 1u);
+  EXPECT_EQ(scene.objects[0].shape, ObjectShape::kCamera);
+  EXPECT_DOUBLE_EQ(scene.objects[0].fovy_deg, 30);
+  EXPECT_DOUBLE_EQ(scene.objects[0].aspect, 2);
+}
+
 TEST(SceneInputTest, JsonErrorsSayWhere) {
   EXPECT_THROW(ParseRenderSceneJson("{not json", nullptr), std::invalid_argument);
   EXPECT_THROW(ParseRenderSceneJson(R"({"objects":[]})", nullptr), std::invalid_argument);
