@@ -19,8 +19,10 @@ function(prs_add_test name)
   prs_target_defaults(${name})
   target_link_libraries(${name} PRIVATE ${ARG_LIBS} GTest::gtest GTest::gtest_main)
   # Reachable sets computed by one test are read from this build's own cache by the others
-  # (and never from the user's ~/.cache): see lang::DefaultCacheDir.
+  # (and never from the user's ~/.cache): see lang::DefaultCacheDir. Two properties, not one
+  # ENVIRONMENT list: gtest_discover_tests splits a list into separate property arguments, and
+  # everything after the first item was silently dropped.
   gtest_discover_tests(${name} DISCOVERY_TIMEOUT 60
-                       PROPERTIES ENVIRONMENT
-                       "PRS_SOURCE_DIR=${PROJECT_SOURCE_DIR};PRS_CACHE_DIR=${PROJECT_BINARY_DIR}/test_reach_cache")
+                       PROPERTIES ENVIRONMENT "PRS_SOURCE_DIR=${PROJECT_SOURCE_DIR}"
+                       ENVIRONMENT_MODIFICATION "PRS_CACHE_DIR=set:${PROJECT_BINARY_DIR}/test_reach_cache")
 endfunction()

@@ -28,14 +28,19 @@ class FileSystem {
 /// The real file system.
 const FileSystem& RealFileSystem();
 
+/// Where reachable sets are cached by default: $PRS_CACHE_DIR when set (empty: no disk cache),
+/// else $XDG_CACHE_HOME/probrobscene, else $HOME/.cache/probrobscene, else "" (no disk cache).
+std::string DefaultCacheDir();
+
 struct CompileOptions {
   /// Directories searched for `from NAME import *` after the importing file's own directory.
   std::vector<std::string> search_path;
   /// `param` overrides, NAME -> text (a number when it parses as one, else a string).
   std::vector<std::pair<std::string, std::string>> param_overrides;
   const FileSystem* file_system = nullptr;  // null: the real one
-  /// Where reachable sets (`reachable by`) are cached between runs; empty: no disk cache.
-  std::string cache_dir;
+  /// Where reachable sets (`reachable by`) are cached between runs: by default the user's cache
+  /// (DefaultCacheDir, as prs and the Python package use); empty: no disk cache.
+  std::string cache_dir = DefaultCacheDir();
   /// The grid spacing of reachable sets (metres); 0 keeps kinematics::ReachOptions' default.
   /// Coarser grids compute faster and cover less: for the fuzzer, not for users.
   double reach_resolution_m = 0;
@@ -43,10 +48,6 @@ struct CompileOptions {
   /// while the program runs, e.g. "panda's reachable set (...): computed in 1.2 s".
   std::function<void(const std::string&)> on_note;
 };
-
-/// Where reachable sets are cached by default: $PRS_CACHE_DIR when set (empty: no disk cache),
-/// else $XDG_CACHE_HOME/probrobscene, else $HOME/.cache/probrobscene, else "" (no disk cache).
-std::string DefaultCacheDir();
 
 /// Compiles the program in `path`. Always returns a program, whose `sources` render the
 /// diagnostics; it may be run only when `diagnostics.has_errors()` is false.
