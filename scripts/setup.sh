@@ -28,6 +28,8 @@ packages=(
   liburdfdom-dev libconsole-bridge-dev libtinyxml-dev  # arms from URDF files (src/kinematics:
                          # `reachable by` in the language); urdfdom logs through console_bridge
                          # and parses with TinyXML, both included directly
+  libassimp-dev libqhull-dev libfcl-dev  # mesh shapes (src/shapes): files read with assimp,
+                         # convex hulls with qhull, mesh collisions with FCL
 )
 # What the tests, benchmarks, fuzzing and the Python package add (scripts/test.sh).
 [[ $set_name == all ]] && packages+=(

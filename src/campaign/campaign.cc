@@ -145,7 +145,7 @@ CampaignSpec InitCampaign(const std::string& dir, const lang::CompiledProgram& p
       return part == "..";
     });
     if (!inside) {
-      throw CampaignError("the arm file '" + r.name + "' is not below the scenario's directory, so "
+      throw CampaignError("the file '" + r.name + "' (an arm or a mesh) is not below the scenario's directory, so "
                           "a campaign cannot carry it; put it next to the .prs file and name it "
                           "by a relative path");
     }

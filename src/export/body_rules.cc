@@ -25,6 +25,13 @@ std::string Lowercase(std::string text) {
 Shape ReadShape(const ObjectFacts& facts, const std::string& label,
                 std::vector<std::string>& warnings) {
   if (facts.dimensions.minCoeff() <= 0) return Shape::kNone;
+  if (const lang::Value* shape = Find(facts.properties, "shape"); shape && shape->Is<lang::MeshRef>()) {
+    // Meshes in exports are still to come (issue 17): say so rather than pass a box silently.
+    warnings.push_back(fmt::format("{}: its shape is the mesh {}; exported as its bounding box "
+                                   "(formats do not carry meshes yet)",
+                                   label, lang::Repr(*shape)));
+    return Shape::kBox;
+  }
   const lang::Value* value = Find(facts.properties, "shape_type");
   if (value == nullptr) return Shape::kBox;
   if (value->Is<lang::StringPtr>()) {

@@ -319,6 +319,38 @@ ConvexRegion ErodeByRound(const ConvexRegion& region, const Eigen::Vector3d& axi
   return r;
 }
 
+ConvexRegion ErodeByPoints(const ConvexRegion& region, const Eigen::Matrix3d& R_WB,
+                           const std::vector<Eigen::Vector3d>& points_B) {
+  if (points_B.empty()) throw std::invalid_argument("ErodeByPoints: no points");
+  Eigen::Vector3d lo = points_B[0], hi = points_B[0];
+  for (const Eigen::Vector3d& p : points_B) {
+    RequireFinite("ErodeByPoints", "points_B", p);
+    lo = lo.cwiseMin(p);
+    hi = hi.cwiseMax(p);
+  }
+  if (region.empty_) return ConvexRegion::Empty();
+  AffineHull hull;
+  if (!internal::CalcEqualityHull(region.equalities_, &hull)) return ConvexRegion::Empty();
+  const Eigen::Matrix3d P = hull.basis * hull.basis.transpose();
+  std::vector<Eigen::Vector3d> points_W;  // rotated and projected: P·R_WB·p
+  points_W.reserve(points_B.size());
+  for (const Eigen::Vector3d& p : points_B) points_W.push_back(P * (R_WB * p));
+  ConvexRegion r = region;
+  r.canon_.reset();
+  r.kind_ = ConvexRegion::Kind::kEroded;
+  for (HalfSpace& h : r.half_spaces_) {
+    double support = -std::numeric_limits<double>::infinity();
+    for (const Eigen::Vector3d& p : points_W) support = std::max(support, h.normal.dot(p));
+    h.offset -= support;
+  }
+  r.balls_.clear();
+  for (const Ball& ball : region.balls_) {
+    for (const Eigen::Vector3d& p : points_W) r.balls_.push_back({ball.p_center - p, ball.radius});
+  }
+  r.size_label_ = (hi - lo) / 2;
+  return r;
+}
+
 ConvexRegion internal::AttachCanon(ConvexRegion region, RegionCanon canon) {
   region.canon_ = std::make_shared<const RegionCanon>(std::move(canon));
   return region;

@@ -146,6 +146,8 @@ class ConvexRegion {
                                  const Eigen::Vector3d& half_extents);
   friend ConvexRegion ErodeByRound(const ConvexRegion& region, const Eigen::Vector3d& axis,
                                    double radius);
+  friend ConvexRegion ErodeByPoints(const ConvexRegion& region, const Eigen::Matrix3d& R_WB,
+                                    const std::vector<Eigen::Vector3d>& points_B);
   friend ConvexRegion internal::AttachCanon(ConvexRegion region, internal::RegionCanon canon);
   bool RawContains(const Eigen::Vector3d& p_W, double tolerance) const;
   std::string DescribeGeneric() const;
@@ -183,5 +185,14 @@ ConvexRegion ErodeByBox(const ConvexRegion& region, const Eigen::Matrix3d& R_WB,
 /// is not known yet: a disk inside the box is inside it for every turn about `axis`.
 /// Throws std::invalid_argument for a negative or non-finite radius or a non-finite axis.
 ConvexRegion ErodeByRound(const ConvexRegion& region, const Eigen::Vector3d& axis, double radius);
+
+/// The set of centres c for which the convex hull of {c + R_WB·p, p in points_B} lies in
+/// `region`: exact for any convex region, since a convex region holds a hull iff it holds its
+/// vertices (used for mesh shapes with their hull's vertices). Like ErodeByBox, the points are
+/// first projected onto the region's affine hull; each half-space offset shrinks by the
+/// points' support along its normal and a ball becomes one ball per point. Throws
+/// std::invalid_argument for an empty or non-finite point set.
+ConvexRegion ErodeByPoints(const ConvexRegion& region, const Eigen::Matrix3d& R_WB,
+                           const std::vector<Eigen::Vector3d>& points_B);
 
 }  // namespace prs::geometry

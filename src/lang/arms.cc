@@ -3,10 +3,10 @@
 #include "lang/arms.h"
 
 #include <cstdio>
-#include <filesystem>
 
 #include "kinematics/panda.h"
 #include "kinematics/urdf.h"
+#include "lang/program_files.h"
 
 namespace prs::lang::internal {
 namespace {
@@ -137,35 +137,13 @@ void LoadArmFiles(CompiledProgram& program, const CompileOptions& options,
                                             options.on_note);
   std::vector<ArmLiteral> literals;
   CollectArmLiterals(program, &literals);
-  const FileSystem& fs = options.file_system ? *options.file_system : RealFileSystem();
   std::map<std::string, bool> done;
   for (const ArmLiteral& literal : literals) {
     if (!EndsWith(literal.value, ".urdf") || done[literal.value]) continue;
     done[literal.value] = true;
-    const std::filesystem::path named(literal.value);
-    std::vector<std::string> directories{
-        std::filesystem::path(program.sources.path(literal.span.file)).parent_path().string()};
-    directories.insert(directories.end(), options.search_path.begin(), options.search_path.end());
-    std::optional<std::string> text;
-    std::string path, searched;
-    for (const std::string& dir : directories) {
-      path = named.is_absolute() ? named.string() : (std::filesystem::path(dir.empty() ? "." : dir) / named).string();
-      if ((text = fs.ReadFile(path))) break;
-      searched += (searched.empty() ? "" : ", ") + (dir.empty() ? std::string(".") : dir);
-      if (named.is_absolute()) break;
-    }
-    if (!text) {
-      Diagnostic d;
-      d.id = "file-not-found";
-      d.span = literal.span;
-      d.message = "cannot read the URDF file '" + literal.value + "'" +
-                  (named.is_absolute() ? "" : " (looked in " + searched + ")");
-      d.notes.push_back({{}, false, "give a path relative to this .prs file, or add its "
-                                    "directory with -I DIR"});
-      diagnostics.Report(std::move(d));
-      continue;
-    }
-    program.arms->AddUrdf(literal.value, path, std::move(*text));
+    std::optional<ProgramFile> file =
+        ReadProgramFile(program, options, literal.value, literal.span, "URDF file", diagnostics);
+    if (file) program.arms->AddUrdf(literal.value, file->path, std::move(file->bytes));
   }
 }
 
@@ -174,7 +152,10 @@ void LoadArmFiles(CompiledProgram& program, const CompileOptions& options,
 namespace prs::lang {
 
 std::vector<ProgramResource> ListResources(const CompiledProgram& program) {
-  return program.arms ? program.arms->ListUrdfs() : std::vector<ProgramResource>{};
+  std::vector<ProgramResource> resources =
+      program.arms ? program.arms->ListUrdfs() : std::vector<ProgramResource>{};
+  for (const auto& [name, mesh] : program.meshes) resources.push_back({name, mesh.path, mesh.bytes});
+  return resources;
 }
 
 }  // namespace prs::lang

@@ -29,6 +29,7 @@ const std::vector<BuiltinInfo>& GlobalBuiltins() {
       {"Sphere", Builtin::kSphere, 2, 2, "Sphere(center, radius)"},
       {"All", Builtin::kAll, 0, 0, "All()"},
       {"Empty", Builtin::kEmpty, 0, 0, "Empty()"},
+      {"Mesh", Builtin::kMesh, 1, 2, "Mesh(file, scale=S)"},
       {"range", Builtin::kRangeFn, 1, 3, "range([start,] stop[, step])"},
       {"len", Builtin::kLen, 1, 1, "len(x)"},
       {"abs", Builtin::kAbs, 1, 1, "abs(x)"},

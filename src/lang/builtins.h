@@ -15,6 +15,8 @@ enum class Builtin : int {
   kCuboid, kRect3D, kHalfSpace, kConvexPolygon3D, kConvexPolyhedron, kSphere, kAll, kEmpty,
   // Python-like helpers.
   kRangeFn, kLen, kAbs, kMin, kMax, kRound, kInt, kFloat, kStr, kBool, kList, kSum,
+  // Object shapes.
+  kMesh,
   // The math module.
   kSin, kCos, kTan, kAsin, kAcos, kAtan, kAtan2, kSqrt, kExp, kLog, kRadians, kDegrees,
   kFloor, kCeil, kFabs, kHypot,

@@ -132,6 +132,7 @@ Value Interpreter::CallBuiltin(Builtin id, const std::vector<Value>& args,
       for (const Value& item : Iterate(args[0], spans[0])) total += ToNumber(item, spans[0], "each value");
       return total;
     }
+    case Builtin::kMesh: return CallMesh(args, spans, span);
     default: break;
   }
   Fail(span, "internal", "built-in not implemented");
@@ -189,7 +190,9 @@ Value Interpreter::CallMethod(const BoundMethod& method, const std::vector<Value
   const auto& region = receiver.As<RegionPtr>();
   if (method.name == "contains") {
     if (const auto* object = std::get_if<ObjectRef>(&args[0].data)) {
-      if (scene_.objects[object->index].cls->has_box) return region->ContainsBox(BoxOf(object->index));
+      if (scene_.objects[object->index].cls->has_box) {
+        return RegionContainsObject(*region, object->index, geometry::kGeometricTolerance);
+      }
     }
     return region->Contains(ToVector(args[0], spans[0], "the argument of 'contains'"));
   }

@@ -232,7 +232,16 @@ void NameChecker::CheckCall(const CallExpr& call, SourceSpan span) {
 }
 
 void NameChecker::CheckArity(const BuiltinInfo& info, const CallExpr& call, SourceSpan span) {
-  for (const CallArg& arg : call.args) {
+  for (size_t i = 0; i < call.args.size(); ++i) {
+    const CallArg& arg = call.args[i];
+    // Mesh's scale may be named (`Mesh("mug.obj", scale=0.001)`), as the second argument.
+    if (arg.keyword && info.id == Builtin::kMesh && arg.keyword->name == "scale" && i == 1) continue;
+    if (arg.keyword && info.id == Builtin::kMesh) {
+      diagnostics_.Error("bad-argument", arg.keyword->span,
+                         "Mesh takes the file and then its scale, as in Mesh(\"mug.obj\", "
+                         "scale=0.001); '" + arg.keyword->name + "' is not one of its arguments");
+      return;
+    }
     if (arg.keyword) {
       diagnostics_.Error("bad-argument", arg.keyword->span,
                          std::string(info.name) + " takes no keyword arguments; call it as " +

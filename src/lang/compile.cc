@@ -9,6 +9,7 @@
 #include <sstream>
 
 #include "lang/arms.h"
+#include "lang/program_files.h"
 #include "lang/lang.h"
 #include "lang/parser.h"
 #include "lang/resolve.h"
@@ -238,6 +239,7 @@ std::unique_ptr<CompiledProgram> CompileText(const std::string& path, std::strin
   if (!diagnostics.has_errors()) ResolveProgram(*program, loader.loaded(), diagnostics);
   if (!diagnostics.has_errors()) CheckParamOverrides(*program, options, diagnostics);
   if (!diagnostics.has_errors()) internal::LoadArmFiles(*program, options, diagnostics);
+  if (!diagnostics.has_errors()) internal::LoadMeshFiles(*program, options, diagnostics);
   return program;
 }
 

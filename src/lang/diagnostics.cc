@@ -313,6 +313,13 @@ const std::vector<DiagnosticKind>& DiagnosticCatalogue() {
       {"bad-arm", "interpreter",
        "an arm that cannot be used: unknown model, bad URDF, missing link, bad options"},
       {"bad-camera", "interpreter", "a camera whose intrinsics are out of range (fov, aspect, near/far)"},
+      {"bad-mesh", "interpreter",
+       "a mesh shape that cannot be used: unknown format, unreadable or empty file, a path that "
+       "is not a string literal, or an orientation that depends on its position"},
+      {"conflicting-size", "interpreter", "width, length or height given for a mesh-shaped object "
+                                          "and different from its mesh's size"},
+      {"mesh-warning", "resolver", "(warning) a mesh that is not closed, has zero-area triangles "
+                                   "or looks like it is in the wrong units"},
       {"sampling-failed", "sampler", "no valid scene within the attempt limit, or none possible"},
   };
   return kCatalogue;

@@ -220,6 +220,9 @@ bool Interpreter::ValuesEqual(const Value& a, const Value& b) {
     return same_elements((*l)->elements, b.As<std::shared_ptr<ListData>>()->elements);
   }
   if (const auto* r = std::get_if<RegionPtr>(&a.data)) return *r == b.As<RegionPtr>();
+  if (const auto* m = std::get_if<MeshRef>(&a.data)) {
+    return m->mesh == b.As<MeshRef>().mesh && m->scale == b.As<MeshRef>().scale;
+  }
   return false;
 }
 

@@ -168,6 +168,22 @@ class Interpreter {
   void CheckCollisions(int index);
   void CheckWorkspace();
   geometry::OrientedBox BoxOf(int index) const;
+  // --- shapes (shapes.cc): meshes where boxes would be conservative ---
+  Value CallMesh(const std::vector<Value>& args, const std::vector<SourceSpan>& spans, SourceSpan span);
+  // A size step of an object whose shape is a mesh: the mesh's scaled bounding box; a size
+  // given explicitly must agree with it (a located error otherwise).
+  Value SizeFromShape(const PlanStep& step, int index, Value value, SourceSpan value_span);
+  // Object `index`'s convex hull vertices in its frame, scaled; empty for a box.
+  std::vector<Eigen::Vector3d> ScaledHull(int index) const;
+  // The centres at which the object (its hull, or its box) lies in `region`, exactly.
+  geometry::ConvexRegion ErodeByOwnShape(const geometry::ConvexRegion& region, int index) const;
+  // Whether the object (its hull, or its box) lies in `region`.
+  bool RegionContainsObject(const geometry::ConvexRegion& region, int index, double tolerance) const;
+  // The object's extent beyond its centre along `normal` (its hull's or box's support).
+  double CalcObjectSupport(int index, const Eigen::Vector3d& normal) const;
+  // Whether two placed objects overlap: boxes exactly, a mesh by FCL where the boxes overlap.
+  bool DoObjectsOverlap(int a, int b);
+  std::shared_ptr<const shapes::Collider> ColliderOf(int index);
   std::string DescribeBox(int index) const;  // "c (0.05 x 0.05 x 0.05 m at (x, y, z))"
   const geometry::ConvexRegion* Workspace() const;
   const RegionPtr* FindWorkspace() const;  // null when `workspace` is not a region

@@ -61,12 +61,18 @@ void Interpreter::RunPlanStep(const PlanStep& step, int index, SourceSpan span) 
   const NamingScope naming(*this, index, &step.property);
   switch (step.kind) {
     case PlanStepKind::kDefault:
-      SetProperty(index, step.property, EvalDefault(*step.default_value, index),
-                  step.default_value->expr ? step.default_value->expr->span : span);
+    case PlanStepKind::kWith: {
+      const bool with = step.kind == PlanStepKind::kWith;
+      Value value = with ? Eval(*step.specifier->target) : EvalDefault(*step.default_value, index);
+      const SourceSpan value_span = with ? step.specifier->target->span
+                                         : step.default_value->expr ? step.default_value->expr->span : span;
+      if (scene_.objects[index].mesh && step.property.size() <= 6 &&
+          (step.property == "width" || step.property == "length" || step.property == "height")) {
+        value = SizeFromShape(step, index, std::move(value), value_span);
+      }
+      SetProperty(index, step.property, std::move(value), value_span);
       break;
-    case PlanStepKind::kWith:
-      SetProperty(index, step.property, Eval(*step.specifier->target), step.specifier->target->span);
-      break;
+    }
     case PlanStepKind::kOrientation:
       SetOrientation(step, index);
       break;
@@ -153,6 +159,11 @@ void Interpreter::SetProperty(int index, const std::string& name, Value value,
     if (key == "length"sv) o.dimensions.y() = x;
     if (key == "height"sv) o.dimensions.z() = x;
   }
+  if (key == "shape"sv) {
+    const MeshRef* mesh = std::get_if<MeshRef>(&value.data);
+    o.mesh = mesh ? mesh->mesh : nullptr;
+    o.mesh_scale = mesh ? mesh->scale : 1;
+  }
   for (auto& [existing, v] : o.properties) {
     if (std::string_view(existing) == key) {
       v = std::move(value);
@@ -202,11 +213,10 @@ std::string Interpreter::DescribeBox(int index) const {
 void Interpreter::CheckCollisions(int index) {
   const SceneObject& o = scene_.objects[index];
   if (!o.cls->has_box || o.allow_collisions) return;
-  const geometry::OrientedBox box = BoxOf(index);
   for (int other = 0; other < static_cast<int>(scene_.objects.size()); ++other) {
     const SceneObject& p = scene_.objects[other];
     if (other == index || !completed_[other] || !p.cls->has_box || p.allow_collisions) continue;
-    if (geometry::DoBoxesOverlap(box, BoxOf(other))) {
+    if (DoObjectsOverlap(index, other)) {
       const int first = std::min(index, other), second = std::max(index, other);
       std::string culprit = scene_.objects[first].DisplayName(first) + " and " +
                             scene_.objects[second].DisplayName(second);
@@ -241,7 +251,7 @@ void Interpreter::CheckWorkspace() {
                                                                    : RejectionKind::kWorkspace;
   for (int i = 0; i < static_cast<int>(scene_.objects.size()); ++i) {
     const SceneObject& o = scene_.objects[i];
-    const bool inside = o.cls->has_box ? workspace->ContainsBox(BoxOf(i), 1e-9)
+    const bool inside = o.cls->has_box ? RegionContainsObject(*workspace, i, 1e-9)
                                        : workspace->Contains(o.p_WO);
     if (!inside) Reject(kind, o.DisplayName(i) + " outside the workspace", o.span);
   }

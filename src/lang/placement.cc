@@ -286,8 +286,7 @@ PositionConstraint Interpreter::EvalSideConstraint(const Specifier& s, int index
   // (while the orientation is open, by the extent of a round core inside every turn of it).
   double extent = 0;
   if (open == ObjectPlan::OpenTurn::kNone) {
-    const geometry::OrientedBox box = BoxOf(index);
-    extent = geometry::CalcBoxSupport(box.R_WB, box.half_extents, normal);
+    extent = CalcObjectSupport(index, normal);
   } else {
     c.box_region = ConvexRegion::MakeHalfSpace(frame.p_W + normal * d, normal);
     const RoundCore core = CalcRoundCore(index, open);
@@ -299,10 +298,7 @@ PositionConstraint Interpreter::EvalSideConstraint(const Specifier& s, int index
 
 ConvexRegion Interpreter::ErodeByOwnBox(const ConvexRegion& box_region, int index,
                                         ObjectPlan::OpenTurn open, PositionConstraint& c) {
-  if (open == ObjectPlan::OpenTurn::kNone) {
-    const geometry::OrientedBox box = BoxOf(index);
-    return geometry::ErodeByBox(box_region, box.R_WB, box.half_extents);
-  }
+  if (open == ObjectPlan::OpenTurn::kNone) return ErodeByOwnShape(box_region, index);
   c.box_region = box_region;
   const RoundCore core = CalcRoundCore(index, open);
   return geometry::ErodeByRound(box_region, core.axis, core.radius);
@@ -310,6 +306,14 @@ ConvexRegion Interpreter::ErodeByOwnBox(const ConvexRegion& box_region, int inde
 
 RoundCore Interpreter::CalcRoundCore(int index, ObjectPlan::OpenTurn open) {
   const SceneObject& o = scene_.objects[index];
+  if (o.mesh) {
+    // A disk inside the bounding box need not be inside the mesh's hull, so the superset
+    // would not hold: not supported yet, and said so rather than sampled wrongly.
+    Fail(o.span, "bad-mesh",
+         "this " + o.cls->name + " has a mesh shape and an orientation that depends on its "
+         "position (e.g. 'facing toward') while a specifier needs its footprint; give the "
+         "orientation directly (facing V, with yaw θ) or drop 'completely'/the side specifier");
+  }
   const Vector3d half_extents = o.dimensions / 2;
   if (open == ObjectPlan::OpenTurn::kAny) return {Vector3d::Zero(), half_extents.minCoeff()};
   // Pitch and roll are known: the largest horizontal disk about the centre inside the tilted

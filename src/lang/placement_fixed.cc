@@ -55,7 +55,11 @@ std::vector<int> Interpreter::FixedObstacles(int index) const {
   if (!o.cls->has_box || o.allow_collisions) return obstacles;
   for (int j = 0; j < index; ++j) {
     const SceneObject& x = scene_.objects[j];
-    if (completed_[j] && x.fixed && x.cls->has_box && !x.allow_collisions) obstacles.push_back(j);
+    // A mesh is cut out by its collision test, not its box: the box would forbid places where
+    // only the boxes overlap (a mug's handle over a bowl).
+    if (completed_[j] && x.fixed && x.cls->has_box && !x.allow_collisions && !x.mesh && !o.mesh) {
+      obstacles.push_back(j);
+    }
   }
   return obstacles;
 }

@@ -56,6 +56,12 @@ class Planner {
     AddDefaults();
     if (!AddSpecifiers(plan)) return false;
     AddPositionAndOrientation(plan);
+    // A mesh shape gives the object its size (spec §10): sizes are worked out after it.
+    if (sources_.count("shape") && cls_.has_box) {
+      for (const char* size : {"width", "length", "height"}) {
+        if (sources_.count(size)) sources_[size].reads.push_back("shape");
+      }
+    }
     DropUnknownReads();
     BreakPositionOrientationCycle(plan);
     plan.fold_workspace = cls_.has_box && !DependsOn("orientation", "position");

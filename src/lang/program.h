@@ -11,6 +11,7 @@
 
 #include "lang/ast.h"
 #include "lang/source.h"
+#include "shapes/mesh.h"
 
 namespace prs::lang {
 
@@ -107,6 +108,14 @@ struct CompiledProgram {
   /// The arms `reachable by` uses: URDF files read at compile time, chains and reachable sets
   /// built on first use (thread-safe).
   std::shared_ptr<internal::ArmStore> arms;
+  /// A mesh file a `Mesh("...")` call names: loaded and checked at compile time, by the name
+  /// the program gives it; the bytes are kept for campaigns, which copy the files they use.
+  struct MeshFile {
+    std::shared_ptr<const shapes::MeshShape> shape;
+    std::string path;
+    std::string bytes;
+  };
+  std::map<std::string, MeshFile> meshes;
 
   const ModuleInfo& main() const { return *modules[main_module]; }
 };

@@ -3,14 +3,17 @@
 // sampling thread owns one (sampling::SceneSampler does).
 #pragma once
 
+#include <map>
 #include <memory>
 #include <string>
+#include <tuple>
 #include <unordered_map>
 
 #include "geometry/sampling.h"
 #include "geometry/union.h"
 #include "lang/lang.h"
 #include "lang/value.h"
+#include "shapes/collide.h"
 
 namespace prs::lang {
 
@@ -30,6 +33,9 @@ class RunCache {
   std::unordered_map<int, std::unordered_map<std::string, Value>> module_globals;
   /// Objects of fixed creation sites (ObjectPlan::object_fixed), as first built.
   std::unordered_map<const ObjectPlan*, SceneObject> fixed_objects;
+  /// Collision shapes of meshes (by mesh and scale) and of boxes that meet a mesh (by size).
+  std::map<std::tuple<const shapes::MeshShape*, double, double, double>,
+           std::shared_ptr<const shapes::Collider>> colliders;
 };
 
 }  // namespace prs::lang

@@ -24,6 +24,10 @@ struct SceneObject {
   Eigen::Quaterniond R_WO = Eigen::Quaterniond::Identity();
   Eigen::Vector3d dimensions = Eigen::Vector3d::Zero();  // width, length, height (0 for points)
   bool allow_collisions = false;
+  /// Its shape when the `shape` property is a mesh (`Mesh("mug.obj")`), else null (a box). The
+  /// mesh is `mesh_scale` times the file's size; `dimensions` is its scaled bounding box.
+  std::shared_ptr<const shapes::MeshShape> mesh;
+  double mesh_scale = 1;
   bool fixed = false;  // the same in every scene (ObjectPlan::object_fixed)
   /// Nonzero for an object a sampler keeps and copies unchanged into later scenes (RunCache::
   /// fixed_objects): objects with the same id are equal in every field, so what is made from

@@ -47,7 +47,7 @@ std::string TypeName(const Value& v) {
   static const char* const kNames[] = {
       "None",   "boolean", "number",   "string",   "vector",   "oriented point",
       "orientation", "object", "region", "class", "function", "built-in function",
-      "module", "method",  "tuple",    "list",     "dict"};
+      "module", "method",  "tuple",    "list",     "dict", "mesh"};
   static_assert(std::variant_size_v<decltype(v.data)> == std::size(kNames));
   return kNames[v.data.index()];
 }
@@ -92,6 +92,9 @@ std::string Repr(const Value& v) {
   }
   if (const auto* c = std::get_if<const ClassInfo*>(&v.data)) return "class " + (*c)->name;
   if (const auto* r = std::get_if<RegionPtr>(&v.data)) return (*r)->Describe();
+  if (const auto* m = std::get_if<MeshRef>(&v.data)) {
+    return "Mesh('" + m->mesh->name + "'" + (m->scale == 1 ? "" : ", scale=" + FormatNumber(m->scale)) + ")";
+  }
   return TypeName(v);
 }
 

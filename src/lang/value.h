@@ -13,6 +13,7 @@
 #include <vector>
 
 #include "geometry/region.h"
+#include "shapes/mesh.h"
 
 namespace prs::lang {
 
@@ -79,6 +80,13 @@ struct FunctionRef {
   int module_index;
 };
 
+/// An object shape from a mesh file (`Mesh("mug.obj", scale=0.001)`, spec §10): the mesh as
+/// loaded when the program was compiled, and the factor its file units are multiplied by.
+struct MeshRef {
+  std::shared_ptr<const shapes::MeshShape> mesh;
+  double scale = 1;
+};
+
 using RegionPtr = std::shared_ptr<const geometry::ConvexRegion>;
 using StringPtr = std::shared_ptr<const std::string>;
 
@@ -86,7 +94,7 @@ struct Value {
   std::variant<NoneValue, bool, double, StringPtr, Eigen::Vector3d, OrientedPoint, Orientation,
                ObjectRef, RegionPtr, const ClassInfo*, FunctionRef, BuiltinRef, ModuleRef,
                BoundMethod, std::shared_ptr<TupleData>, std::shared_ptr<ListData>,
-               std::shared_ptr<DictData>>
+               std::shared_ptr<DictData>, MeshRef>
       data;
   /// The distribution this value was drawn from (for `resample`); null otherwise.
   std::shared_ptr<const Distribution> origin;

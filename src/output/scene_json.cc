@@ -111,6 +111,17 @@ void AppendValue(const lang::Value& v, Out& out) {
     return AppendElements((*t)->elements, out);
   if (const auto* l = std::get_if<std::shared_ptr<lang::ListData>>(&data))
     return AppendElements((*l)->elements, out);
+  if (const auto* m = std::get_if<lang::MeshRef>(&data)) {
+    // A mesh shape: the file as the program names it, where it was read, and its scale.
+    out += "{\"mesh\":";
+    AppendString(m->mesh->name, out);
+    out += ",\"path\":";
+    AppendString(m->mesh->path, out);
+    out += ",\"scale\":";
+    AppendNumber(m->scale, out);
+    out += '}';
+    return;
+  }
   AppendString(lang::Repr(v), out);
 }
 

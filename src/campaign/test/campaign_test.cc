@@ -205,7 +205,7 @@ TEST_F(CampaignTest, AnArmFileOutsideTheScenarioIsRefused) {
     InitCampaign(dir_, *program, spec);
     ADD_FAILURE() << "an arm file above the scenario cannot be carried";
   } catch (const CampaignError& e) {
-    EXPECT_NE(std::string(e.what()).find("'../arm.urdf' is not below the scenario's directory"),
+    EXPECT_NE(std::string(e.what()).find("'../arm.urdf' (an arm or a mesh) is not below the scenario's directory"),
               std::string::npos)
         << e.what();
   }

@@ -1,5 +1,6 @@
 // Tests of ErodeByBox against brute force (all 8 corners inside) for 3D regions and for
-// the footprint semantics of a rotated Rect3D.
+// the footprint semantics of a rotated Rect3D; ErodeByPoints against ErodeByBox (a box's
+// corners) and against brute force for a random point set.
 #include <cmath>
 #include <numbers>
 #include <vector>
@@ -187,6 +188,53 @@ TEST(ErosionTest, RoundErosionIsExactForPolytopesAndHoldsEveryTurn) {
   // Balls in the region are kept as they are: a superset that holds every valid centre.
   const ConvexRegion sphere = ConvexRegion::MakeSphere({0, 0, 0}, 1);
   EXPECT_TRUE(ErodeByRound(sphere, Eigen::Vector3d::Zero(), 0.5).Contains({0.9, 0, 0}));
+}
+
+// A box's eight corners erode exactly as the box does; a random point cloud's erosion holds a
+// centre iff every point placed there is inside (balls included, one per point).
+TEST(ErosionTest, ErodeByPointsMatchesCornersAndBruteForce) {
+  Rng rng(47);
+  int inside = 0, outside = 0;
+  for (const ConvexRegion& region : Make3DRegions(rng)) {
+    const Eigen::Matrix3d R = RandomRotation(rng);
+    const Eigen::Vector3d h = RandomVector(rng, 0.01, 0.2);
+    const auto box_corners = CalcBoxCorners({Eigen::Vector3d::Zero(), Eigen::Matrix3d::Identity(), h});
+    const std::vector<Eigen::Vector3d> corners(box_corners.begin(), box_corners.end());
+    const ConvexRegion by_box = ErodeByBox(region, R, h);
+    const ConvexRegion by_corners = ErodeByPoints(region, R, corners);
+    std::vector<Eigen::Vector3d> cloud;
+    for (int i = 0; i < 30; ++i) cloud.push_back(RandomVector(rng, -0.15, 0.15));
+    const ConvexRegion by_cloud = ErodeByPoints(region, R, cloud);
+    for (int i = 0; i < 3000; ++i) {
+      const Eigen::Vector3d c = RandomVector(rng, -1, 1);
+      if (by_box.Contains(c, -1e-7)) EXPECT_TRUE(by_corners.Contains(c));
+      if (!by_box.Contains(c, 1e-7)) EXPECT_FALSE(by_corners.Contains(c));
+      bool all_in = true, one_out = false;
+      for (const Eigen::Vector3d& p : cloud) {
+        all_in = all_in && region.Contains(c + R * p, -1e-7);
+        one_out = one_out || !region.Contains(c + R * p, 1e-7);
+      }
+      if (all_in) {
+        EXPECT_TRUE(by_cloud.Contains(c));
+        ++inside;
+      }
+      if (one_out) {
+        EXPECT_FALSE(by_cloud.Contains(c));
+        ++outside;
+      }
+    }
+  }
+  EXPECT_GT(inside, 300);
+  EXPECT_GT(outside, 300);
+  // On a rectangle (a plane region), only the footprint counts: a tall thin cloud standing on
+  // the tabletop fits where its horizontal extent does.
+  const ConvexRegion top = ConvexRegion::MakeRect3D({0, 0, 0.8}, Eigen::Matrix3d::Identity(), 1.0, 0.5);
+  const ConvexRegion centres = ErodeByPoints(top, Eigen::Matrix3d::Identity(),
+                                             {{-0.1, 0, -0.5}, {0.1, 0, 0.5}, {0, 0.05, 0}});
+  EXPECT_TRUE(centres.Contains({0.39, 0.2, 0.8}));
+  EXPECT_FALSE(centres.Contains({0.41, 0.2, 0.8}));
+  EXPECT_FALSE(centres.Contains({0, 0.21, 0.8}));
+  EXPECT_THROW(ErodeByPoints(top, Eigen::Matrix3d::Identity(), {}), std::invalid_argument);
 }
 
 }  // namespace

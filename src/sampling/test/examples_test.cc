@@ -63,6 +63,8 @@ void ExpectNoCollisionsAndInsideWorkspace(const Scene& scene) {
     }
     for (size_t b = a + 1; b < scene.objects.size(); ++b) {
       if (scene.objects[a].allow_collisions || scene.objects[b].allow_collisions) continue;
+      // Meshes may overlap each other's bounding boxes; mesh_test.cc checks them with FCL.
+      if (scene.objects[a].mesh || scene.objects[b].mesh) continue;
       EXPECT_FALSE(BoxesOverlapByPoints(scene.objects[a], scene.objects[b]))
           << scene.objects[a].DisplayName(a) << " overlaps " << scene.objects[b].DisplayName(b);
     }

@@ -1,0 +1,131 @@
+// Object shapes in the interpreter (spec §10): `Mesh("file", scale=S)` values, sizes read from
+// the mesh, and the places where a mesh replaces the box: containment erodes by its convex
+// hull (exact), side specifiers use the hull's extent, and collisions test the meshes (FCL)
+// where the bounding boxes overlap. Everything else (sight lines, fixed-obstacle cuts) uses
+// the bounding box, which holds the mesh, so it stays valid and is only more cautious.
+#include <cmath>
+
+#include "lang/interp_internal.h"
+
+namespace prs::lang::internal {
+
+using Eigen::Vector3d;
+
+// Touching is not overlapping (geometry::DoBoxesOverlap's convention): meshes are tested
+// shrunk so that no surface point moves by more than this (shapes/collide.h).
+constexpr double kMeshTouchingM = 1e-6;
+
+Value Interpreter::CallMesh(const std::vector<Value>& args, const std::vector<SourceSpan>& spans,
+                            SourceSpan span) {
+  if (!args[0].Is<StringPtr>()) {
+    Fail(spans[0], "type-error", "Mesh's first argument is the mesh file's path, a string; got a " +
+                                     TypeName(args[0]));
+  }
+  const std::string& name = *args[0].As<StringPtr>();
+  auto it = program_.meshes.find(name);
+  if (it == program_.meshes.end()) {
+    Fail(spans[0], "bad-mesh",
+         "the mesh file '" + name + "' was not read when the program was compiled: give the path "
+         "as a string literal, Mesh(\"" + name + "\"), so that it is loaded with the program");
+  }
+  double scale = 1;
+  if (args.size() > 1) {
+    scale = ToNumber(args[1], spans[1], "Mesh's scale");
+    if (!(scale > 0) || !std::isfinite(scale)) {
+      Fail(spans[1], "bad-value", "a mesh's scale multiplies its file's coordinates and must be a "
+                                  "finite number > 0, got " + Repr(scale));
+    }
+  }
+  (void)span;
+  return MeshRef{it->second.shape, scale};
+}
+
+Value Interpreter::SizeFromShape(const PlanStep& step, int index, Value value, SourceSpan value_span) {
+  const SceneObject& o = scene_.objects[index];
+  const int axis = step.property == "width" ? 0 : step.property == "length" ? 1 : 2;
+  const double from_mesh = o.mesh->extents[axis] * o.mesh_scale;
+  const bool given = !(step.kind == PlanStepKind::kDefault && !step.default_value->expr);
+  if (!given) return from_mesh;
+  const double x = ToNumber(value, value_span, "'" + step.property + "'");
+  if (std::fabs(x - from_mesh) > 1e-9 * std::max(1.0, from_mesh)) {
+    Fail(value_span, "conflicting-size",
+         "this " + o.cls->name + "'s " + step.property + " is " + FormatNumber(x) +
+             " m, but its mesh '" + o.mesh->name + "' is " + FormatNumber(from_mesh) +
+             " m along that axis at scale " + FormatNumber(o.mesh_scale),
+         {{{}, false, "a mesh's size comes from its file: drop width, length and height, and "
+                      "resize it with Mesh(\"" + o.mesh->name + "\", scale=S)"}});
+  }
+  return value;
+}
+
+std::vector<Vector3d> Interpreter::ScaledHull(int index) const {
+  const SceneObject& o = scene_.objects[index];
+  std::vector<Vector3d> hull;
+  if (!o.mesh) return hull;
+  hull.reserve(o.mesh->hull_O.size());
+  for (const Vector3d& p : o.mesh->hull_O) hull.push_back(p * o.mesh_scale);
+  return hull;
+}
+
+geometry::ConvexRegion Interpreter::ErodeByOwnShape(const geometry::ConvexRegion& region,
+                                                    int index) const {
+  const SceneObject& o = scene_.objects[index];
+  if (o.mesh) return geometry::ErodeByPoints(region, o.R_WO.toRotationMatrix(), ScaledHull(index));
+  const geometry::OrientedBox box = BoxOf(index);
+  return geometry::ErodeByBox(region, box.R_WB, box.half_extents);
+}
+
+bool Interpreter::RegionContainsObject(const geometry::ConvexRegion& region, int index,
+                                       double tolerance) const {
+  const SceneObject& o = scene_.objects[index];
+  if (!o.mesh) return region.ContainsBox(BoxOf(index), tolerance);
+  const Eigen::Matrix3d R = o.R_WO.toRotationMatrix();
+  for (const Vector3d& p : o.mesh->hull_O) {
+    if (!region.Contains(o.p_WO + R * (p * o.mesh_scale), tolerance)) return false;
+  }
+  return true;
+}
+
+double Interpreter::CalcObjectSupport(int index, const Vector3d& normal) const {
+  const SceneObject& o = scene_.objects[index];
+  if (!o.mesh) {
+    const geometry::OrientedBox box = BoxOf(index);
+    return geometry::CalcBoxSupport(box.R_WB, box.half_extents, normal);
+  }
+  const Vector3d n_O = o.R_WO.toRotationMatrix().transpose() * normal;
+  double support = -INFINITY;
+  for (const Vector3d& p : o.mesh->hull_O) support = std::max(support, n_O.dot(p) * o.mesh_scale);
+  return support;
+}
+
+std::shared_ptr<const shapes::Collider> Interpreter::ColliderOf(int index) {
+  const SceneObject& o = scene_.objects[index];
+  const auto key = o.mesh ? std::make_tuple(o.mesh.get(), o.mesh_scale, 0.0, 0.0)
+                          : std::make_tuple(static_cast<const shapes::MeshShape*>(nullptr),
+                                            o.dimensions.x(), o.dimensions.y(), o.dimensions.z());
+  if (options_.cache) {
+    auto it = options_.cache->colliders.find(key);
+    if (it != options_.cache->colliders.end()) return it->second;
+  }
+  std::shared_ptr<const shapes::Collider> collider =
+      o.mesh ? shapes::Collider::MakeMesh(*o.mesh, o.mesh_scale, kMeshTouchingM)
+             : shapes::Collider::MakeBox(o.dimensions / 2, kMeshTouchingM);
+  if (options_.cache) options_.cache->colliders.emplace(key, collider);
+  return collider;
+}
+
+bool Interpreter::DoObjectsOverlap(int a, int b) {
+  if (!geometry::DoBoxesOverlap(BoxOf(a), BoxOf(b))) return false;
+  const SceneObject& oa = scene_.objects[a];
+  const SceneObject& ob = scene_.objects[b];
+  if (!oa.mesh && !ob.mesh) return true;
+  auto pose = [](const SceneObject& o) {
+    Eigen::Isometry3d X = Eigen::Isometry3d::Identity();
+    X.linear() = o.R_WO.toRotationMatrix();
+    X.translation() = o.p_WO;
+    return X;
+  };
+  return shapes::DoCollidersOverlap(*ColliderOf(a), pose(oa), *ColliderOf(b), pose(ob));
+}
+
+}  // namespace prs::lang::internal

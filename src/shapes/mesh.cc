@@ -1,0 +1,229 @@
+// Mesh loading (assimp), checks, and convex hulls (qhull): see mesh.h.
+#include "shapes/mesh.h"
+
+#include <Eigen/Geometry>
+#include <assimp/Importer.hpp>
+#include <assimp/postprocess.h>
+#include <assimp/scene.h>
+
+#include <algorithm>
+#include <array>
+#include <charconv>
+#include <cmath>
+#include <cstdio>
+#include <map>
+#include <string>
+
+extern "C" {
+#include <libqhull_r/qhull_ra.h>
+}
+
+namespace prs::shapes {
+namespace {
+
+std::string LowerExtension(const std::string& name) {
+  const size_t dot = name.find_last_of('.');
+  const size_t slash = name.find_last_of('/');
+  if (dot == std::string::npos || (slash != std::string::npos && dot < slash)) return "";
+  std::string ext = name.substr(dot + 1);
+  std::transform(ext.begin(), ext.end(), ext.begin(),
+                 [](unsigned char c) { return static_cast<char>(std::tolower(c)); });
+  return ext;
+}
+
+// Vertices merged by exact position across all of the file's meshes (assimp joins them only
+// within one mesh), so that shared edges are counted as shared.
+class VertexPool {
+ public:
+  int Add(const Eigen::Vector3d& p) {
+    auto [it, inserted] = index_.emplace(std::array<double, 3>{p.x(), p.y(), p.z()},
+                                         static_cast<int>(vertices_.size()));
+    if (inserted) vertices_.push_back(p);
+    return it->second;
+  }
+  std::vector<Eigen::Vector3d>& vertices() { return vertices_; }
+
+ private:
+  std::map<std::array<double, 3>, int> index_;
+  std::vector<Eigen::Vector3d> vertices_;
+};
+
+// assimp reads coordinates as floats. The shortest decimal that gives the same float is what the
+// file most likely wrote ("0.6", not 0.6000000238418579), so that is the double we keep.
+double ToDouble(float x) {
+  char text[32];
+  const auto written = std::to_chars(text, text + sizeof text, x);
+  double value = x;
+  std::from_chars(text, written.ptr, value);
+  return value;
+}
+
+void CollectTriangles(const aiScene& scene, VertexPool& pool, TriangleMesh& mesh,
+                      int* degenerate) {
+  for (unsigned m = 0; m < scene.mNumMeshes; ++m) {
+    const aiMesh& source = *scene.mMeshes[m];
+    std::vector<int> ids(source.mNumVertices);
+    for (unsigned v = 0; v < source.mNumVertices; ++v) {
+      const aiVector3D& p = source.mVertices[v];
+      const Eigen::Vector3d point(ToDouble(p.x), ToDouble(p.y), ToDouble(p.z));
+      if (!point.allFinite()) {
+        throw MeshError("has a vertex whose coordinates are not finite numbers");
+      }
+      ids[v] = pool.Add(point);
+    }
+    for (unsigned f = 0; f < source.mNumFaces; ++f) {
+      const aiFace& face = source.mFaces[f];
+      if (face.mNumIndices != 3) continue;  // points and lines have no surface
+      bool in_range = true;
+      for (int k = 0; k < 3; ++k) in_range = in_range && face.mIndices[k] < source.mNumVertices;
+      if (!in_range) throw MeshError("has a face that names a vertex it does not have");
+      const Eigen::Vector3i t(ids[face.mIndices[0]], ids[face.mIndices[1]], ids[face.mIndices[2]]);
+      const std::vector<Eigen::Vector3d>& p = pool.vertices();
+      const double twice_area = (p[t[1]] - p[t[0]]).cross(p[t[2]] - p[t[0]]).norm();
+      if (!(twice_area > 0)) {
+        ++*degenerate;
+        continue;
+      }
+      mesh.triangles.push_back(t);
+    }
+  }
+}
+
+int CountOpenEdges(const TriangleMesh& mesh) {
+  std::map<std::pair<int, int>, int> uses;
+  for (const Eigen::Vector3i& t : mesh.triangles) {
+    for (int k = 0; k < 3; ++k) {
+      const int a = t[k], b = t[(k + 1) % 3];
+      ++uses[{std::min(a, b), std::max(a, b)}];
+    }
+  }
+  int open = 0;
+  for (const auto& [edge, count] : uses) open += count == 1;
+  return open;
+}
+
+}  // namespace
+
+bool IsSupportedMeshExtension(std::string_view extension) {
+  return extension == "obj" || extension == "stl" || extension == "ply" || extension == "gltf" ||
+         extension == "glb";
+}
+
+const char* SupportedMeshFormats() {
+  return "OBJ, STL, PLY and glTF (.glb, or .gltf with its buffers embedded)";
+}
+
+std::shared_ptr<const MeshShape> LoadMeshShape(std::string_view bytes, const std::string& name,
+                                               const std::string& path) {
+  const std::string extension = LowerExtension(name);
+  if (!IsSupportedMeshExtension(extension)) {
+    throw MeshError("is not a mesh format ProbRobScene reads (" +
+                    (extension.empty() ? std::string("no extension") : "." + extension) +
+                    "); use " + SupportedMeshFormats());
+  }
+  if (bytes.empty()) throw MeshError("is empty");
+  Assimp::Importer importer;
+  // Lines and points are dropped; node transforms are applied (glTF scenes place their meshes).
+  importer.SetPropertyInteger(AI_CONFIG_PP_SBP_REMOVE, aiPrimitiveType_POINT | aiPrimitiveType_LINE);
+  const aiScene* scene = importer.ReadFileFromMemory(
+      bytes.data(), bytes.size(),
+      aiProcess_Triangulate | aiProcess_JoinIdenticalVertices | aiProcess_PreTransformVertices |
+          aiProcess_SortByPType,
+      extension.c_str());
+  if (!scene || (scene->mFlags & AI_SCENE_FLAGS_INCOMPLETE) || !scene->mRootNode) {
+    throw MeshError("cannot be read as a ." + extension + " mesh; check that it is a complete " +
+                    "file of that format (" + SupportedMeshFormats() + ")");
+  }
+  auto shape = std::make_shared<MeshShape>();
+  shape->name = name;
+  shape->path = path;
+  VertexPool pool;
+  CollectTriangles(*scene, pool, shape->mesh, &shape->degenerate_triangles);
+  if (shape->mesh.triangles.empty()) {
+    throw MeshError(shape->degenerate_triangles > 0
+                        ? "has only triangles of zero area, so no surface"
+                        : "has no triangles (an empty mesh, or only points and lines)");
+  }
+  // Keep only the vertices triangles use, then centre the bounding box on the origin.
+  std::vector<int> renumber(pool.vertices().size(), -1);
+  for (Eigen::Vector3i& t : shape->mesh.triangles) {
+    for (int k = 0; k < 3; ++k) {
+      int& id = renumber[t[k]];
+      if (id < 0) {
+        id = static_cast<int>(shape->mesh.vertices_O.size());
+        shape->mesh.vertices_O.push_back(pool.vertices()[t[k]]);
+      }
+      t[k] = id;
+    }
+  }
+  Eigen::Vector3d lo = Eigen::Vector3d::Constant(INFINITY), hi = -lo;
+  for (const Eigen::Vector3d& p : shape->mesh.vertices_O) {
+    lo = lo.cwiseMin(p);
+    hi = hi.cwiseMax(p);
+  }
+  shape->p_FileCenter = (lo + hi) / 2;
+  shape->extents = hi - lo;
+  if (!shape->extents.allFinite()) throw MeshError("is too large: its size is not a finite number");
+  for (Eigen::Vector3d& p : shape->mesh.vertices_O) p -= shape->p_FileCenter;
+  shape->open_edges = CountOpenEdges(shape->mesh);
+  shape->hull_O = CalcConvexHullVertices(shape->mesh.vertices_O);
+  return shape;
+}
+
+std::vector<Eigen::Vector3d> CalcConvexHullVertices(const std::vector<Eigen::Vector3d>& points) {
+  if (points.size() < 5) return points;
+  // qhull refuses flat input; the vertex set itself has the same support function.
+  Eigen::Vector3d lo = points[0], hi = points[0];
+  for (const Eigen::Vector3d& p : points) lo = lo.cwiseMin(p), hi = hi.cwiseMax(p);
+  if ((hi - lo).minCoeff() <= 1e-9 * std::max(1.0, (hi - lo).maxCoeff())) return points;
+  std::vector<coordT> coordinates;
+  coordinates.reserve(points.size() * 3);
+  for (const Eigen::Vector3d& p : points) coordinates.insert(coordinates.end(), {p.x(), p.y(), p.z()});
+  qhT qh_storage;
+  qhT* qh = &qh_storage;
+  FILE* quiet = std::fopen("/dev/null", "w");  // qhull writes its own reports; we say ours
+  qh_zero(qh, quiet);
+  char flags[] = "qhull Qt";
+  const int status = qh_new_qhull(qh, 3, static_cast<int>(points.size()), coordinates.data(),
+                                  False, flags, quiet, quiet);
+  std::vector<Eigen::Vector3d> hull;
+  if (status == 0) {
+    vertexT* vertex;
+    FORALLvertices {
+      const int id = qh_pointid(qh, vertex->point);
+      if (id >= 0 && id < static_cast<int>(points.size())) hull.push_back(points[id]);
+    }
+  }
+  qh_freeqhull(qh, !qh_ALL);
+  int still_long = 0, still_total = 0;
+  qh_memfreeshort(qh, &still_long, &still_total);
+  if (quiet) std::fclose(quiet);
+  if (status != 0 || hull.size() < 4) return points;  // nearly flat: keep every point
+  return hull;
+}
+
+std::vector<std::string> DescribeMeshWarnings(const MeshShape& shape, double scale) {
+  std::vector<std::string> warnings;
+  if (shape.open_edges > 0) {
+    warnings.push_back("is not closed (" + std::to_string(shape.open_edges) +
+                       " edges belong to one triangle only): collisions use its surface and "
+                       "containment its convex hull, so a gap in it can let objects pass");
+  }
+  if (shape.degenerate_triangles > 0) {
+    warnings.push_back("has " + std::to_string(shape.degenerate_triangles) +
+                       " triangles of zero area; they were dropped");
+  }
+  const double largest = shape.extents.maxCoeff() * scale;
+  char size[96];
+  std::snprintf(size, sizeof size, "%.4g m across at scale %g", largest, scale);
+  if (largest > 20) {
+    warnings.push_back(std::string("is ") + size +
+                       "; if the file is in millimetres, use scale=0.001 (centimetres: 0.01)");
+  } else if (largest < 0.002) {
+    warnings.push_back(std::string("is only ") + size +
+                       "; if the file is in metres and the scale meant millimetres, drop it");
+  }
+  return warnings;
+}
+
+}  // namespace prs::shapes
