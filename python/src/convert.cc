@@ -55,6 +55,13 @@ py::object ToPython(const lang::Value& value) {
     }
     return dict;
   }
+  if (const auto* m = std::get_if<lang::MeshRef>(&data)) {  // as the scene JSON writes it
+    py::dict dict;
+    dict["mesh"] = m->mesh->name;
+    dict["path"] = m->mesh->path;
+    dict["scale"] = m->scale;
+    return dict;
+  }
   return py::str(lang::Repr(value));
 }
 

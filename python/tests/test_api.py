@@ -62,6 +62,16 @@ def test_property_values_convert_to_python_types():
     assert scene.params == {"mode": "fast"}
 
 
+def test_a_mesh_shape_reads_as_in_the_json_line():
+    scenario = prs.load(EXAMPLES / "kitchen_meshes.prs")
+    scene = scenario.sample(seed=2, index=0)
+    shape = scene["mug"].properties["shape"]
+    assert shape == {"mesh": "assets/mug.obj", "path": shape["path"], "scale": 1.0}
+    assert shape["path"].endswith("examples/assets/mug.obj")
+    assert shape == json.loads(scene.to_json())["objects"][3]["properties"]["shape"]
+    assert scene["mug"].dimensions.tolist() == pytest.approx([0.11, 0.08, 0.1], abs=1e-12)
+
+
 def test_batch_helpers_stack_one_object_over_scenes(table_cube):
     scenes = table_cube.sample_batch(50, seed=2)
     xyz = prs.positions(scenes, "Cube#5")

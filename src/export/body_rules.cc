@@ -26,11 +26,7 @@ Shape ReadShape(const ObjectFacts& facts, const std::string& label,
                 std::vector<std::string>& warnings) {
   if (facts.dimensions.minCoeff() <= 0) return Shape::kNone;
   if (const lang::Value* shape = Find(facts.properties, "shape"); shape && shape->Is<lang::MeshRef>()) {
-    // Meshes in exports are still to come (issue 17): say so rather than pass a box silently.
-    warnings.push_back(fmt::format("{}: its shape is the mesh {}; exported as its bounding box "
-                                   "(formats do not carry meshes yet)",
-                                   label, lang::Repr(*shape)));
-    return Shape::kBox;
+    return Shape::kMesh;
   }
   const lang::Value* value = Find(facts.properties, "shape_type");
   if (value == nullptr) return Shape::kBox;
@@ -121,6 +117,14 @@ Body MakeBody(const ObjectFacts& facts, NameTable& names, std::vector<std::strin
   body.R_WO = facts.R_WO.normalized();
   body.size = facts.dimensions;
   body.shape = ReadShape(facts, label, warnings);
+  if (body.shape == Shape::kMesh) {
+    const auto& mesh = Find(facts.properties, "shape")->As<lang::MeshRef>();
+    body.mesh = mesh.mesh;
+    body.mesh_scale = mesh.scale;
+    warnings.push_back(fmt::format("{}: glTF, URDF and SDF carry its mesh {}; MJCF and USD get "
+                                   "its bounding box (meshes there are still to come)",
+                                   label, lang::Repr(*Find(facts.properties, "shape"))));
+  }
   body.color = ReadColor(facts, label, warnings);
   body.mass_kg = ReadMass(facts, body.shape, label, warnings);
   body.inertia_diag = CalcInertiaDiag(body.shape, body.size, body.mass_kg);

@@ -7,6 +7,7 @@
 #include <algorithm>
 #include <array>
 #include <cmath>
+#include <filesystem>
 
 #include "export/body_rules.h"
 #include "export/writers.h"
@@ -102,6 +103,16 @@ std::string WriteScene(const ExportScene& scene, Format format) {
 }
 
 namespace internal {
+
+std::string FormatMeshUri(const Body& body) {
+  std::error_code error;
+  const std::filesystem::path absolute = std::filesystem::absolute(body.mesh->path, error);
+  return "file://" + (error ? body.mesh->path : absolute.lexically_normal().string());
+}
+
+Eigen::Vector3d CalcMeshFileOffset(const Body& body) {
+  return -body.mesh->p_FileCenter * body.mesh_scale;
+}
 
 std::string FormatNumber(double x) {
   if (x == 0) return "0";  // also for -0, which some parsers reject

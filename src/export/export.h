@@ -7,6 +7,7 @@
 #include <Eigen/Geometry>
 #include <algorithm>
 #include <cstdint>
+#include <memory>
 #include <optional>
 #include <string>
 #include <string_view>
@@ -33,6 +34,7 @@ std::string ListFormatNames();
 enum class Shape {
   kBox,       // width x length x height, centred on the body's origin
   kCylinder,  // axis along local z; radius min(width, length) / 2; length height
+  kMesh,      // Body::mesh at Body::mesh_scale, its bounding box centred on the body's origin
   kNone,      // a point (some dimension is zero): a frame without geometry
 };
 
@@ -44,6 +46,9 @@ struct Body {
   Eigen::Quaterniond R_WO = Eigen::Quaterniond::Identity();  // local to world, unit
   Eigen::Vector3d size = Eigen::Vector3d::Zero();  // width (x), length (y), height (z), metres
   Shape shape = Shape::kBox;
+  /// For Shape::kMesh: the mesh (shapes/mesh.h) and the factor on its file's coordinates.
+  std::shared_ptr<const shapes::MeshShape> mesh;
+  double mesh_scale = 1;
   Rgba color;
   double mass_kg = 0;  // > 0: a free body; 0: static (fixed in the world)
   Eigen::Vector3d inertia_diag = Eigen::Vector3d::Zero();  // kg m^2 about the centre, local axes

@@ -1,6 +1,7 @@
 // glTF 2.0 for viewers, built as a tinygltf model and serialised by tinygltf: a root node that
 // turns the scene's Z-up world into glTF's Y-up, and under it one node per object with its exact
-// translation and rotation and a triangle mesh of its box or cylinder, coloured by a material.
+// translation and rotation and a triangle mesh of its box, cylinder or mesh shape, coloured by a
+// material.
 #include <tiny_gltf.h>
 
 #include <algorithm>
@@ -118,8 +119,23 @@ int AddMaterial(tinygltf::Model& model, const Body& body) {
   return int(model.materials.size() - 1);
 }
 
+// The mesh itself, scaled, in the body's frame; three vertices per triangle so that each
+// triangle has its own (flat) normal.
+MeshData MakeTriangleMesh(const shapes::MeshShape& shape, double scale) {
+  MeshData mesh;
+  const std::vector<Eigen::Vector3d>& p = shape.mesh.vertices_O;
+  for (const Eigen::Vector3i& t : shape.mesh.triangles) {
+    const Eigen::Vector3d n = (p[t[1]] - p[t[0]]).cross(p[t[2]] - p[t[0]]).normalized();
+    const uint32_t first = mesh.vertex_count();
+    for (int k = 0; k < 3; ++k) mesh.AddVertex(p[t[k]] * scale, n);
+    for (const uint32_t i : {0u, 1u, 2u}) mesh.indices.push_back(first + i);
+  }
+  return mesh;
+}
+
 int AddMesh(tinygltf::Model& model, const Body& body) {
-  const MeshData data = body.shape == Shape::kCylinder
+  const MeshData data = body.shape == Shape::kMesh ? MakeTriangleMesh(*body.mesh, body.mesh_scale)
+                        : body.shape == Shape::kCylinder
                             ? MakeCylinderMesh(body.cylinder_radius(), body.size.z())
                             : MakeBoxMesh(body.size);
   const size_t n = data.vertex_count();

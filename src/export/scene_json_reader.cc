@@ -3,7 +3,12 @@
 // same rules as a sampled scene's.
 #include <fmt/format.h>
 
+#include <filesystem>
+#include <fstream>
+#include <map>
+#include <mutex>
 #include <nlohmann/json.hpp>
+#include <sstream>
 #include <stdexcept>
 
 #include "export/body_rules.h"
@@ -79,6 +84,37 @@ internal::Properties ReadProperties(const json& object, const std::string& where
   return properties;
 }
 
+// A mesh shape as `prs sample` writes it ({"mesh": NAME, "path": PATH, "scale": S}), read from
+// PATH (once per process) so that exports carry the mesh; nullptr with a warning when the file
+// cannot be used, and the object goes out as its bounding box.
+std::shared_ptr<const shapes::MeshShape> LoadMeshOfShape(const json& shape, const std::string& where,
+                                                         std::vector<std::string>& warnings) {
+  const std::string path = shape.at("path").get<std::string>();
+  static std::mutex mutex;
+  static std::map<std::string, std::shared_ptr<const shapes::MeshShape>> loaded;
+  std::lock_guard<std::mutex> lock(mutex);
+  if (auto it = loaded.find(path); it != loaded.end()) return it->second;
+  std::error_code error;
+  const std::string extension = std::filesystem::path(path).extension().string();
+  const bool usable = shapes::IsSupportedMeshExtension(extension.empty() ? "" : extension.substr(1)) &&
+                      std::filesystem::is_regular_file(path, error) &&
+                      std::filesystem::file_size(path, error) < (uint64_t(1) << 28);
+  std::string problem = "is not a mesh file that can be read here";
+  if (usable) {
+    std::ifstream in(path, std::ios::binary);
+    std::stringstream bytes;
+    bytes << in.rdbuf();
+    try {
+      return loaded[path] = shapes::LoadMeshShape(bytes.str(), shape.at("mesh").get<std::string>(), path);
+    } catch (const shapes::MeshError& e) {
+      problem = e.what();
+    }
+  }
+  warnings.push_back(fmt::format("{}: its mesh file '{}' {}; exported as its bounding box", where,
+                                 path, problem));
+  return nullptr;
+}
+
 Body ReadBody(const json& object, int index, internal::NameTable& names,
               std::vector<std::string>& warnings) {
   const std::string where = fmt::format("object {}", index);
@@ -96,8 +132,18 @@ Body ReadBody(const json& object, int index, internal::NameTable& names,
   facts.R_WO = Eigen::Quaterniond(q[0], q[1], q[2], q[3]);
   facts.dimensions = ReadNumbers<3>(object, "dimensions", where);
   facts.properties = ReadProperties(object, where);  // checks their depth before any copy
-  for (const auto& [key, value] : facts.properties) {
+  for (auto& [key, value] : facts.properties) {
     if (key == "allowCollisions") facts.allow_collisions = value.Is<bool>() && value.As<bool>();
+    if (key != "shape") continue;
+    const json& shape = object.at("properties").at("shape");
+    const bool is_mesh = shape.is_object() && shape.contains("mesh") && shape["mesh"].is_string() &&
+                         shape.contains("path") && shape["path"].is_string() &&
+                         shape.contains("scale") && shape["scale"].is_number() &&
+                         shape["scale"].get<double>() > 0;
+    if (!is_mesh) continue;
+    if (auto mesh = LoadMeshOfShape(shape, where, warnings)) {
+      value = lang::MeshRef{std::move(mesh), shape["scale"].get<double>()};
+    }
   }
   return internal::MakeBody(facts, names, warnings);
 }

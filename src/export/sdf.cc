@@ -10,6 +10,11 @@ namespace prs::exporting::internal {
 namespace {
 
 std::string FormatGeometry(const Body& body) {
+  if (body.shape == Shape::kMesh) {
+    const double s = body.mesh_scale;
+    return fmt::format("<mesh><uri>{}</uri><scale>{}</scale></mesh>", FormatMeshUri(body),
+                       FormatVector(Eigen::Vector3d(s, s, s)));
+  }
   if (body.shape == Shape::kCylinder) {
     return fmt::format("<cylinder><radius>{}</radius><length>{}</length></cylinder>",
                        FormatNumber(body.cylinder_radius()), FormatNumber(body.size.z()));
@@ -21,16 +26,21 @@ void AppendShape(const Body& body, std::string& out) {
   if (body.shape == Shape::kNone) return;
   const std::string geometry = FormatGeometry(body);
   const std::string rgba = FormatRgba(body.color);
+  // A mesh file keeps its own frame: moved so that its bounding box is centred on the link.
+  const std::string pose =
+      body.shape == Shape::kMesh
+          ? fmt::format("<pose>{} 0 0 0</pose>", FormatVector(CalcMeshFileOffset(body)))
+          : "";
   if (body.collides) {
     fmt::format_to(std::back_inserter(out),
-                   "        <collision name=\"collision\"><geometry>{}</geometry></collision>\n",
-                   geometry);
+                   "        <collision name=\"collision\">{}<geometry>{}</geometry></collision>\n",
+                   pose, geometry);
   }
   fmt::format_to(std::back_inserter(out),
-                 "        <visual name=\"visual\">\n          <geometry>{}</geometry>\n"
+                 "        <visual name=\"visual\">{}\n          <geometry>{}</geometry>\n"
                  "          <material><ambient>{}</ambient><diffuse>{}</diffuse></material>\n"
                  "        </visual>\n",
-                 geometry, rgba, rgba);
+                 pose, geometry, rgba, rgba);
 }
 
 void AppendInertial(const Body& body, std::string& out) {

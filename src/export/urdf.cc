@@ -9,6 +9,11 @@ namespace prs::exporting::internal {
 namespace {
 
 std::string FormatGeometry(const Body& body) {
+  if (body.shape == Shape::kMesh) {
+    const double s = body.mesh_scale;
+    return fmt::format("<mesh filename=\"{}\" scale=\"{}\"/>", FormatMeshUri(body),
+                       FormatVector(Eigen::Vector3d(s, s, s)));
+  }
   if (body.shape == Shape::kCylinder) {
     return fmt::format("<cylinder radius=\"{}\" length=\"{}\"/>",
                        FormatNumber(body.cylinder_radius()), FormatNumber(body.size.z()));
@@ -20,15 +25,20 @@ void AppendLink(const Body& body, std::string& out) {
   fmt::format_to(std::back_inserter(out), "  <link name=\"{}\">\n", body.name);
   if (body.shape != Shape::kNone) {
     const std::string geometry = FormatGeometry(body);
+    // A mesh file keeps its own frame: moved so that its bounding box is centred on the link.
+    const std::string origin =
+        body.shape == Shape::kMesh
+            ? fmt::format("<origin xyz=\"{}\"/>", FormatVector(CalcMeshFileOffset(body)))
+            : "";
     fmt::format_to(std::back_inserter(out),
-                   "    <visual>\n      <geometry>{}</geometry>\n"
+                   "    <visual>\n      {}<geometry>{}</geometry>\n"
                    "      <material name=\"{}_color\"><color rgba=\"{}\"/></material>\n"
                    "    </visual>\n",
-                   geometry, body.name, FormatRgba(body.color));
+                   origin, geometry, body.name, FormatRgba(body.color));
     if (body.collides) {
       fmt::format_to(std::back_inserter(out),
-                     "    <collision>\n      <geometry>{}</geometry>\n    </collision>\n",
-                     geometry);
+                     "    <collision>\n      {}<geometry>{}</geometry>\n    </collision>\n",
+                     origin, geometry);
     }
   }
   if (body.is_free()) {

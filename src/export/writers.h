@@ -25,6 +25,12 @@ std::string FormatRgba(const Rgba& color, const char* separator = " ");
 /// Pitch is in [-pi/2, pi/2]; at pitch +-pi/2 the roll is 0.
 Eigen::Vector3d CalcRollPitchYaw(const Eigen::Quaterniond& R_WO);
 
+/// A mesh body's file as an absolute file:// URI, for formats that name the file (URDF, SDF).
+std::string FormatMeshUri(const Body& body);
+/// Where a mesh body's file frame sits in the body's frame: the file's coordinates are scaled,
+/// then moved by this, so that the bounding box's centre lands on the body's origin.
+Eigen::Vector3d CalcMeshFileOffset(const Body& body);
+
 /// Standard gravity along world -z, m/s^2, written into every physics format.
 inline constexpr double kGravity = 9.81;
 /// The ground is the plane z = 0; where a format has no plane, a slab this thick below it.

@@ -184,6 +184,11 @@ class Interpreter {
   // Whether two placed objects overlap: boxes exactly, a mesh by FCL where the boxes overlap.
   bool DoObjectsOverlap(int a, int b);
   std::shared_ptr<const shapes::Collider> ColliderOf(int index);
+  // `on X` / `completely on X` where X has a mesh: X's upward-facing surfaces as a union of
+  // convex pieces in X's frame (each raised by the object's half height; for `completely`,
+  // eroded by the object's hull or box), into c.pieces.
+  void SetOnMeshSurfaces(PositionConstraint& c, int index, int target, bool completely,
+                         ObjectPlan::OpenTurn open);
   std::string DescribeBox(int index) const;  // "c (0.05 x 0.05 x 0.05 m at (x, y, z))"
   const geometry::ConvexRegion* Workspace() const;
   const RegionPtr* FindWorkspace() const;  // null when `workspace` is not a region

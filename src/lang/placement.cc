@@ -232,6 +232,10 @@ PositionConstraint Interpreter::EvalOnConstraint(const Specifier& s, int index, 
   if (const auto* ref = std::get_if<ObjectRef>(&target.data)) {
     c.target_object = ref->index;
     const SceneObject& x = scene_.objects[ref->index];
+    if (x.mesh) {
+      SetOnMeshSurfaces(c, index, ref->index, completely, open);
+      return c;
+    }
     const Matrix3d R_WX = x.R_WO.toRotationMatrix();
     const Vector3d up = R_WX.col(2);
     const Vector3d p_top = x.p_WO + up * (x.dimensions.z() / 2 + half_height);

@@ -1,7 +1,7 @@
 // Object shapes in the interpreter (spec §10): `Mesh("file", scale=S)` values, sizes read from
 // the mesh, and the places where a mesh replaces the box: containment erodes by its convex
-// hull (exact), side specifiers use the hull's extent, and collisions test the meshes (FCL)
-// where the bounding boxes overlap. Everything else (sight lines, fixed-obstacle cuts) uses
+// hull (exact), side specifiers use the hull's extent, collisions test the meshes (FCL)
+// where the bounding boxes overlap, and `on` a mesh stands on its upward-facing surfaces. Everything else (sight lines, fixed-obstacle cuts) uses
 // the bounding box, which holds the mesh, so it stays valid and is only more cautious.
 #include <cmath>
 
@@ -126,6 +126,42 @@ bool Interpreter::DoObjectsOverlap(int a, int b) {
     return X;
   };
   return shapes::DoCollidersOverlap(*ColliderOf(a), pose(oa), *ColliderOf(b), pose(ob));
+}
+
+void Interpreter::SetOnMeshSurfaces(PositionConstraint& c, int index, int target, bool completely,
+                                    ObjectPlan::OpenTurn open) {
+  const SceneObject& self = scene_.objects[index];
+  const SceneObject& x = scene_.objects[target];
+  if (completely && open != ObjectPlan::OpenTurn::kNone) {
+    Fail(c.specifier->span, "bad-mesh",
+         "'completely on' a mesh-shaped object needs this " + self.cls->name + "'s orientation "
+         "before its position, but the orientation depends on the position (e.g. 'facing "
+         "toward'); give it directly (facing V, with yaw θ), or use 'on'");
+  }
+  const double half_height = self.dimensions.z() / 2;
+  const Eigen::Matrix3d R_WX = x.R_WO.toRotationMatrix();
+  const Eigen::Matrix3d R_XO = R_WX.transpose() * self.R_WO.toRotationMatrix();
+  const std::vector<Vector3d> hull = ScaledHull(index);
+  std::vector<geometry::ConvexRegion> pieces_X;
+  for (const shapes::SupportPolygon& support : x.mesh->supports_O) {
+    std::vector<Vector3d> points;
+    points.reserve(support.vertices_O.size());
+    for (const Vector3d& p : support.vertices_O) points.push_back(p * x.mesh_scale + support.normal_O * half_height);
+    geometry::ConvexRegion piece = geometry::ConvexRegion::MakeConvexPolygon3D(points);
+    if (completely) {
+      piece = self.mesh ? geometry::ErodeByPoints(piece, R_XO, hull)
+                        : geometry::ErodeByBox(piece, R_XO, self.dimensions / 2);
+      if (piece.IsEmpty()) continue;  // too small for the object's footprint
+    }
+    pieces_X.push_back(std::move(piece));
+  }
+  Eigen::Isometry3d X_WX = Eigen::Isometry3d::Identity();
+  X_WX.linear() = R_WX;
+  X_WX.translation() = x.p_WO;
+  c.pieces = geometry::RegionUnion(std::make_shared<const geometry::PieceSet>(std::move(pieces_X)), X_WX);
+  c.pieces_description = "the upward-facing surfaces of " + x.DisplayName(target) + " (its mesh '" + x.mesh->name + "', " +
+                         std::to_string(x.mesh->supports_O.size()) + " pieces)" +
+                         (completely ? " with room for the whole footprint" : "");
 }
 
 }  // namespace prs::lang::internal

@@ -167,6 +167,7 @@ std::shared_ptr<const MeshShape> LoadMeshShape(std::string_view bytes, const std
   for (Eigen::Vector3d& p : shape->mesh.vertices_O) p -= shape->p_FileCenter;
   shape->open_edges = CountOpenEdges(shape->mesh);
   shape->hull_O = CalcConvexHullVertices(shape->mesh.vertices_O);
+  shape->supports_O = CalcSupportPolygons(shape->mesh);
   return shape;
 }
 

@@ -14,6 +14,8 @@
 #include <string_view>
 #include <vector>
 
+#include "shapes/support.h"
+
 namespace prs::shapes {
 
 /// A bad mesh file; `what()` is a message for the user in our words (never assimp's or qhull's).
@@ -39,6 +41,8 @@ struct MeshShape {
   /// The vertices of the convex hull (a subset of mesh.vertices_O). The mesh lies in a convex
   /// region iff all of these do, so containment erodes by them (geometry::ErodeByPoints).
   std::vector<Eigen::Vector3d> hull_O;
+  /// Its upward-facing surfaces as convex pieces, for `on` this mesh (support.h).
+  std::vector<SupportPolygon> supports_O;
   /// Edges used by exactly one triangle (0 for a closed surface) and triangles of zero area
   /// (dropped when loading): reported as warnings, the mesh is still usable.
   int open_edges = 0;

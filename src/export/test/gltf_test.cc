@@ -86,8 +86,15 @@ void ExpectNodeAsInScene(const tinygltf::Model& model, const tinygltf::Node& nod
   EXPECT_EQ(node.extras.Get("static").Get<bool>(), !body.is_free());
   if (body.shape == Shape::kNone) return;
   ASSERT_GE(node.mesh, 0) << body.name;
-  ExpectOutwardTriangles(model, node.mesh, body.name);
   const Eigen::Vector3d half = MeasureMeshHalfSize(model, node.mesh);
+  if (body.shape == Shape::kMesh) {
+    // The mesh itself, every triangle, its bounding box the object's (float precision).
+    const tinygltf::Primitive& primitive = model.meshes[node.mesh].primitives[0];
+    EXPECT_EQ(model.accessors[primitive.indices].count, 3 * body.mesh->mesh.triangles.size());
+    EXPECT_TRUE(SameVector(half, body.size / 2, 1e-6)) << body.name;
+    return;
+  }
+  ExpectOutwardTriangles(model, node.mesh, body.name);  // convex shapes: normals point out
   if (body.shape == Shape::kBox) {
     EXPECT_TRUE(SameVector(half, body.size / 2, 1e-6)) << body.name;
   } else {

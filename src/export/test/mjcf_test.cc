@@ -96,8 +96,9 @@ void ExpectBodiesAsInScene(const mjModel& m, const ExportScene& scene, const std
     if (body.shape == Shape::kNone) continue;
     const int geom = mj_name2id(&m, mjOBJ_GEOM, body.name.c_str());
     ASSERT_GE(geom, 0) << body.name;
-    EXPECT_EQ(m.geom_type[geom], body.shape == Shape::kBox ? mjGEOM_BOX : mjGEOM_CYLINDER);
-    if (body.shape == Shape::kBox) {
+    // A mesh goes into MJCF as its bounding box for now.
+    EXPECT_EQ(m.geom_type[geom], body.shape == Shape::kCylinder ? mjGEOM_CYLINDER : mjGEOM_BOX);
+    if (body.shape == Shape::kBox || body.shape == Shape::kMesh) {
       EXPECT_TRUE(
           SameVector(Eigen::Map<const Eigen::Vector3d>(m.geom_size + 3 * geom), body.size / 2));
     }
@@ -149,9 +150,9 @@ TEST(MjcfTest, RestingObjectsStayPutForOneSecond) {
   int checked = 0;
   double max_drift = 0;
   for (const auto& example : ExampleScenes()) {
-    // Mesh-shaped objects are exported as their bounding boxes for now (a warning says so),
-    // and boxes overlap where meshes need not (a bowl under a shelf's board): their physics
-    // is checked once exports carry the meshes (issue 17).
+    // MJCF gets a mesh-shaped object's bounding box for now (a warning says so), and boxes
+    // overlap where meshes need not (a bowl under a shelf's board): their physics is checked
+    // once MJCF carries the meshes (issue 17).
     const bool has_mesh = std::any_of(example.scene->objects.begin(), example.scene->objects.end(),
                                       [](const lang::SceneObject& o) { return o.mesh != nullptr; });
     if (has_mesh) continue;

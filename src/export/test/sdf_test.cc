@@ -5,6 +5,7 @@
 #include <sdf/sdf.hh>
 
 #include "export/test/example_scenes.h"
+#include "export/test/mesh_file_check.h"
 
 namespace prs::exporting {
 namespace {
@@ -12,11 +13,17 @@ namespace {
 using testing_scenes::ExampleScenes;
 using testing_scenes::SameRotation;
 using testing_scenes::SameVector;
+using testing_scenes::ExpectMeshFileFits;
 
 void ExpectGeometry(const sdf::Link& link, const Body& body) {
   ASSERT_EQ(link.VisualCount(), 1u) << body.name;
   const sdf::Geometry& geometry = *link.VisualByIndex(0)->Geom();
-  if (body.shape == Shape::kCylinder) {
+  if (body.shape == Shape::kMesh) {
+    ASSERT_EQ(geometry.Type(), sdf::GeometryType::MESH) << body.name;
+    const auto& s = geometry.MeshShape()->Scale();
+    const auto& p = link.VisualByIndex(0)->RawPose().Pos();
+    ExpectMeshFileFits(geometry.MeshShape()->Uri(), {s.X(), s.Y(), s.Z()}, {p.X(), p.Y(), p.Z()}, body);
+  } else if (body.shape == Shape::kCylinder) {
     ASSERT_EQ(geometry.Type(), sdf::GeometryType::CYLINDER) << body.name;
     EXPECT_DOUBLE_EQ(geometry.CylinderShape()->Length(), body.size.z());
   } else {

@@ -6,6 +6,7 @@
 #include <urdf_parser/urdf_parser.h>
 
 #include "export/test/example_scenes.h"
+#include "export/test/mesh_file_check.h"
 
 namespace prs::exporting {
 namespace {
@@ -13,13 +14,19 @@ namespace {
 using testing_scenes::ExampleScenes;
 using testing_scenes::SameRotation;
 using testing_scenes::SameVector;
+using testing_scenes::ExpectMeshFileFits;
 
 Eigen::Vector3d ToEigen(const urdf::Vector3& v) { return {v.x, v.y, v.z}; }
 
 void ExpectGeometry(const urdf::Link& link, const Body& body) {
   ASSERT_NE(link.visual, nullptr) << body.name;
   const urdf::GeometrySharedPtr& geometry = link.visual->geometry;
-  if (body.shape == Shape::kCylinder) {
+  if (body.shape == Shape::kMesh) {
+    const auto mesh = std::dynamic_pointer_cast<urdf::Mesh>(geometry);
+    ASSERT_NE(mesh, nullptr) << body.name;
+    const Eigen::Vector3d scale = ToEigen(mesh->scale);
+    ExpectMeshFileFits(mesh->filename, scale, ToEigen(link.visual->origin.position), body);
+  } else if (body.shape == Shape::kCylinder) {
     const auto cylinder = std::dynamic_pointer_cast<urdf::Cylinder>(geometry);
     ASSERT_NE(cylinder, nullptr) << body.name;
     EXPECT_DOUBLE_EQ(cylinder->length, body.size.z());

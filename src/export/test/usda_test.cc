@@ -74,7 +74,7 @@ void ExpectPrimAsInScene(const std::string& text, const Body& body, const std::s
             std::string::npos);
   EXPECT_EQ(prim.find("PhysicsRigidBodyAPI") != std::string::npos, body.is_free()) << body.name;
   EXPECT_EQ(prim.find("PhysicsCollisionAPI") != std::string::npos, body.collides) << body.name;
-  if (body.shape == Shape::kBox) {
+  if (body.shape == Shape::kBox || body.shape == Shape::kMesh) {  // a mesh: its bounding box
     const std::string cube = FindPrim(prim, "Cube", "shape");
     const std::vector<double> scale = ReadTuple(cube, "double3 xformOp:scale");
     ASSERT_EQ(scale.size(), 3u) << body.name;

@@ -1,7 +1,8 @@
-// Mesh shapes (spec §10) on examples/kitchen_meshes.prs: every vertex of every mesh lies on
-// the tabletop (checked on the whole mesh, not the hull the sampler erodes by); no two meshes
-// overlap by an independent FCL test; and mesh placement accepts scenes whose bounding boxes
-// overlap (which box shapes would reject). Sizes come from the mesh, scaled.
+// Mesh shapes (spec §10) on examples/kitchen_meshes.prs: every vertex of every mesh on the
+// table lies on the tabletop (checked on the whole mesh, not the hull the sampler erodes by),
+// and the mug on the shelf stands on one of its boards, wholly on it, on both boards as often;
+// no two meshes overlap by an independent FCL test; and mesh placement accepts scenes whose
+// bounding boxes overlap (which box shapes would reject). Sizes come from the mesh, scaled.
 #include <gtest/gtest.h>
 
 #include <map>
@@ -33,6 +34,7 @@ TEST(MeshSceneTest, MeshesLieOnTheTableAndNeverOverlap) {
     if (!c) c = shapes::Collider::MakeMesh(*o.mesh, o.mesh_scale, 1e-7);
     return c;
   };
+  int on_board[2] = {0, 0};
   for (int i = 0; i < 1000; ++i) {
     const SampledScene s = sampler.Sample(3, i);
     const SceneObject& table = Find(s.scene, "t");
@@ -41,6 +43,7 @@ TEST(MeshSceneTest, MeshesLieOnTheTableAndNeverOverlap) {
     for (const SceneObject& o : s.scene.objects) {
       if (!o.mesh) continue;
       meshes.push_back(&o);
+      if (*o.name == "spare") continue;  // on the shelf: below
       const Eigen::Isometry3d X = PoseOf(o);
       double lowest = INFINITY;
       for (const Vector3d& p_O : o.mesh->mesh.vertices_O) {
@@ -51,7 +54,22 @@ TEST(MeshSceneTest, MeshesLieOnTheTableAndNeverOverlap) {
       }
       EXPECT_NEAR(lowest, top, 1e-9) << "scene " << i << " " << *o.name;  // standing on it
     }
-    ASSERT_EQ(meshes.size(), 3u);
+    ASSERT_EQ(meshes.size(), 4u);
+    // The spare mug: wholly over a board of the shelf (0.56 x 0.3 m, tops 0.12 and 0.37 m
+    // above the shelf's bottom), its lowest point on that board's top.
+    const SceneObject& shelf = Find(s.scene, "shelf");
+    const SceneObject& spare = Find(s.scene, "spare");
+    const Eigen::Isometry3d X_SW = PoseOf(shelf).inverse();
+    double lowest = INFINITY;
+    for (const Vector3d& p_O : spare.mesh->mesh.vertices_O) {
+      const Vector3d p_S = X_SW * (PoseOf(spare) * (p_O * spare.mesh_scale));
+      ASSERT_LE(std::abs(p_S.x()), 0.28 + kTol) << "scene " << i;
+      ASSERT_LE(std::abs(p_S.y()), 0.15 + kTol) << "scene " << i;
+      lowest = std::min(lowest, p_S.z() + 0.25);  // above the shelf's bottom
+    }
+    const bool lower = std::abs(lowest - 0.12) < 1e-9, upper = std::abs(lowest - 0.37) < 1e-9;
+    ASSERT_TRUE(lower || upper) << "scene " << i << ": the mug's bottom is " << lowest;
+    ++on_board[upper];
     for (size_t a = 0; a < meshes.size(); ++a) {
       for (size_t b = a + 1; b < meshes.size(); ++b) {
         const SceneObject& A = *meshes[a];
@@ -64,6 +82,9 @@ TEST(MeshSceneTest, MeshesLieOnTheTableAndNeverOverlap) {
   }
   // The bowl under the shelf's lower board, the mug's handle over the bowl: kept, not rejected.
   EXPECT_GT(boxes_overlap, 50);
+  // Both boards have the same area: each holds the mug about half the time (n = 1000, the
+  // binomial's standard deviation is 16; 6 of them either side).
+  EXPECT_NEAR(on_board[0], 500, 95) << on_board[1];
 }
 
 TEST(MeshSceneTest, SizeComesFromTheScaledMesh) {
