@@ -66,7 +66,7 @@ void Interpreter::RunPlanStep(const PlanStep& step, int index, SourceSpan span) 
       Value value = with ? Eval(*step.specifier->target) : EvalDefault(*step.default_value, index);
       const SourceSpan value_span = with ? step.specifier->target->span
                                          : step.default_value->expr ? step.default_value->expr->span : span;
-      if (scene_.objects[index].mesh && step.property.size() <= 6 &&
+      if (scene_.objects[index].mesh &&
           (step.property == "width" || step.property == "length" || step.property == "height")) {
         value = SizeFromShape(step, index, std::move(value), value_span);
       }

@@ -141,7 +141,7 @@ void Interpreter::SetOnMeshSurfaces(PositionConstraint& c, int index, int target
   const double half_height = self.dimensions.z() / 2;
   const Eigen::Matrix3d R_WX = x.R_WO.toRotationMatrix();
   const Eigen::Matrix3d R_XO = R_WX.transpose() * self.R_WO.toRotationMatrix();
-  const std::vector<Vector3d> hull = ScaledHull(index);
+  const std::vector<Vector3d> hull = completely ? ScaledHull(index) : std::vector<Vector3d>{};
   std::vector<geometry::ConvexRegion> pieces_X;
   for (const shapes::SupportPolygon& support : x.mesh->supports_O) {
     std::vector<Vector3d> points;

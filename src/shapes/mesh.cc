@@ -14,9 +14,7 @@
 #include <map>
 #include <string>
 
-extern "C" {
-#include <libqhull_r/qhull_ra.h>
-}
+#include "shapes/qhull_session.h"
 
 namespace prs::shapes {
 namespace {
@@ -180,25 +178,14 @@ std::vector<Eigen::Vector3d> CalcConvexHullVertices(const std::vector<Eigen::Vec
   std::vector<coordT> coordinates;
   coordinates.reserve(points.size() * 3);
   for (const Eigen::Vector3d& p : points) coordinates.insert(coordinates.end(), {p.x(), p.y(), p.z()});
-  qhT qh_storage;
-  qhT* qh = &qh_storage;
-  FILE* quiet = std::fopen("/dev/null", "w");  // qhull writes its own reports; we say ours
-  qh_zero(qh, quiet);
-  char flags[] = "qhull Qt";
-  const int status = qh_new_qhull(qh, 3, static_cast<int>(points.size()), coordinates.data(),
-                                  False, flags, quiet, quiet);
   std::vector<Eigen::Vector3d> hull;
-  if (status == 0) {
+  const int status = internal::RunQhull(3, coordinates, "qhull Qt", [&](qhT* qh) {
     vertexT* vertex;
     FORALLvertices {
       const int id = qh_pointid(qh, vertex->point);
       if (id >= 0 && id < static_cast<int>(points.size())) hull.push_back(points[id]);
     }
-  }
-  qh_freeqhull(qh, !qh_ALL);
-  int still_long = 0, still_total = 0;
-  qh_memfreeshort(qh, &still_long, &still_total);
-  if (quiet) std::fclose(quiet);
+  });
   if (status != 0 || hull.size() < 4) return points;  // nearly flat: keep every point
   return hull;
 }

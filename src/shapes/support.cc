@@ -10,9 +10,7 @@
 
 #include "shapes/mesh.h"
 
-extern "C" {
-#include <libqhull_r/qhull_ra.h>
-}
+#include "shapes/qhull_session.h"
 
 namespace prs::shapes {
 namespace {
@@ -33,18 +31,9 @@ double CalcPlanarHullArea(const std::vector<Eigen::Vector3d>& points, const Eige
   std::vector<coordT> coordinates;
   coordinates.reserve(points.size() * 2);
   for (const Eigen::Vector3d& p : points) coordinates.insert(coordinates.end(), {u.dot(p), v.dot(p)});
-  qhT qh_storage;
-  qhT* qh = &qh_storage;
-  FILE* quiet = std::fopen("/dev/null", "w");
-  qh_zero(qh, quiet);
-  char flags[] = "qhull FA";  // FA: compute the hull's area and volume (in 2-D, its area)
-  const int status = qh_new_qhull(qh, 2, static_cast<int>(points.size()), coordinates.data(),
-                                  False, flags, quiet, quiet);
-  const double area = status == 0 ? qh->totvol : 0;
-  qh_freeqhull(qh, !qh_ALL);
-  int still_long = 0, still_total = 0;
-  qh_memfreeshort(qh, &still_long, &still_total);
-  if (quiet) std::fclose(quiet);
+  double area = 0;
+  // FA: compute the hull's area and volume (in 2-D, totvol is its area).
+  internal::RunQhull(2, coordinates, "qhull FA", [&](qhT* qh) { area = qh->totvol; });
   return area;
 }
 
