@@ -1,6 +1,6 @@
 #!/usr/bin/env bash
 # Builds a libFuzzer target (scripts/build.sh fuzz) and fuzzes it for a bounded time.
-# Usage: scripts/fuzz.sh [seconds] [long|scenes|urdf]   (default 30 s, the language)
+# Usage: scripts/fuzz.sh [seconds] [long|scenes|urdf|mesh]   (default 30 s, the language)
 #   (none): the language stage (prs_lang_fuzz), inputs up to 4 KiB, from a scratch corpus in
 #           build-fuzz/ seeded with examples/, tests/lang/bad/ and tests/fuzz/corpus/;
 #   long:   the language stage with inputs up to 1 MiB, from a separate corpus seeded with
@@ -9,7 +9,9 @@
 #           prs export and prs render read them, and controller answers, seeded with
 #           tests/fuzz/scene_corpus/;
 #   urdf:   URDF robot descriptions as `reachable by` loads them (prs_urdf_fuzz), seeded with
-#           the kinematics tests' URDF files.
+#           the kinematics tests' URDF files;
+#   mesh:   mesh files as `shape: Mesh(...)` reads them, then collisions and convex pieces
+#           (prs_mesh_fuzz), seeded with tests/fuzz/mesh_corpus/ (first byte: the format).
 # The language fuzzer computes reachable sets (`reachable by`) on a 10 cm grid, cached in
 # build-fuzz/reach-cache.
 # Replays the target's regression inputs (tests/fuzz/regressions/) first. Exits non-zero on any
@@ -24,7 +26,8 @@ case "$mode" in
   ""|long) target=prs_lang_fuzz; regression_glob='*.prs' ;;
   scenes)  target=prs_scene_json_fuzz; regression_glob='*.json*' ;;
   urdf)    target=prs_urdf_fuzz; regression_glob='*.urdf' ;;
-  *) echo "usage: scripts/fuzz.sh [seconds] [long|scenes|urdf]" >&2; exit 2 ;;
+  mesh)    target=prs_mesh_fuzz; regression_glob='mesh_*' ;;
+  *) echo "usage: scripts/fuzz.sh [seconds] [long|scenes|urdf|mesh]" >&2; exit 2 ;;
 esac
 scripts/build.sh fuzz "$target"
 
@@ -33,6 +36,15 @@ artifacts=build-fuzz/artifacts
 export ASAN_OPTIONS=detect_leaks=1 UBSAN_OPTIONS=print_stacktrace=1
 export LSAN_OPTIONS=suppressions=$PWD/tests/fuzz/lsan.supp  # urdfdom's own leak (see there)
 export PRS_CACHE_DIR=$PWD/build-fuzz/reach-cache
+# The readers' targets (scenes, urdf, mesh): a corpus and log named after the mode, small
+# inputs, 5 s each, and the mode's dictionary.
+if [[ -n $mode && $mode != long ]]; then
+  corpus=build-fuzz/corpus-$mode
+  log=build-fuzz/fuzz-$mode.log
+  mkdir -p "$corpus" "$artifacts"
+  flags=(-timeout=5 -rss_limit_mb=2048 -max_len=8192 -artifact_prefix="$artifacts"/
+         -print_final_stats=1)
+fi
 if [[ $mode == long ]]; then
   corpus=build-fuzz/corpus-long
   log=build-fuzz/fuzz-long.log
@@ -42,20 +54,15 @@ if [[ $mode == long ]]; then
   flags=(-timeout=20 -rss_limit_mb=2048 -max_len=$PRS_FUZZ_MAX_BYTES -len_control=0
          -dict=tests/fuzz/prs.dict -artifact_prefix="$artifacts"/ -print_final_stats=1)
 elif [[ $mode == urdf ]]; then
-  corpus=build-fuzz/corpus-urdf
-  log=build-fuzz/fuzz-urdf.log
-  mkdir -p "$corpus" "$artifacts"
   cp src/kinematics/test/data/*.urdf "$corpus"/
   for f in tests/lang/bad/data/*.urdf; do cp "$f" "$corpus/bad_program_$(basename "$f")"; done
-  flags=(-timeout=5 -rss_limit_mb=2048 -max_len=8192 -dict=tests/fuzz/urdf.dict
-         -artifact_prefix="$artifacts"/ -print_final_stats=1)
+  flags+=(-dict=tests/fuzz/urdf.dict)
+elif [[ $mode == mesh ]]; then
+  cp tests/fuzz/mesh_corpus/* "$corpus"/
+  flags+=(-dict=tests/fuzz/mesh.dict)
 elif [[ $mode == scenes ]]; then
-  corpus=build-fuzz/corpus-scenes
-  log=build-fuzz/fuzz-scenes.log
-  mkdir -p "$corpus" "$artifacts"
   cp tests/fuzz/scene_corpus/* "$corpus"/
-  flags=(-timeout=5 -rss_limit_mb=2048 -max_len=8192 -dict=tests/fuzz/scene_json.dict
-         -artifact_prefix="$artifacts"/ -print_final_stats=1)
+  flags+=(-dict=tests/fuzz/scene_json.dict)
 else
   corpus=build-fuzz/corpus
   log=build-fuzz/fuzz.log

@@ -30,6 +30,7 @@ packages=(
                          # and parses with TinyXML, both included directly
   libassimp-dev libqhull-dev libfcl-dev  # mesh shapes (src/shapes): files read with assimp,
                          # convex hulls with qhull, mesh collisions with FCL
+  libbullet-extras-dev   # ... and HACD's convex pieces of a mesh for MuJoCo (MJCF export)
 )
 # What the tests, benchmarks, fuzzing and the Python package add (scripts/test.sh).
 [[ $set_name == all ]] && packages+=(

@@ -5,7 +5,7 @@
 # (scripts/test_python.sh), the same C++ tests under AddressSanitizer +
 # UndefinedBehaviorSanitizer, then libFuzzer: the language stage for 20 s of ordinary inputs and
 # 10 s of inputs up to 1 MiB (long chains), the readers of scenes files and controller
-# answers for 10 s, and URDF robot descriptions for 10 s (scripts/fuzz.sh).
+# answers for 10 s, URDF robot descriptions for 10 s and mesh files for 10 s (scripts/fuzz.sh).
 # Exits non-zero if anything fails.
 set -euo pipefail
 cd "$(dirname "$0")/.."
@@ -21,3 +21,4 @@ scripts/fuzz.sh 20
 scripts/fuzz.sh 10 long
 scripts/fuzz.sh 10 scenes
 scripts/fuzz.sh 10 urdf
+scripts/fuzz.sh 10 mesh

@@ -121,9 +121,6 @@ Body MakeBody(const ObjectFacts& facts, NameTable& names, std::vector<std::strin
     const auto& mesh = Find(facts.properties, "shape")->As<lang::MeshRef>();
     body.mesh = mesh.mesh;
     body.mesh_scale = mesh.scale;
-    warnings.push_back(fmt::format("{}: glTF, URDF and SDF carry its mesh {}; MJCF and USD get "
-                                   "its bounding box (meshes there are still to come)",
-                                   label, lang::Repr(*Find(facts.properties, "shape"))));
   }
   body.color = ReadColor(facts, label, warnings);
   body.mass_kg = ReadMass(facts, body.shape, label, warnings);

@@ -85,4 +85,10 @@ ExportScene ReadSceneJson(std::string_view line);
 /// std::runtime_error only if tinygltf cannot serialise a glTF model (not expected).
 std::string WriteScene(const ExportScene& scene, Format format);
 
+/// One MJCF `<mesh>` element with its data inline: `points_O` times `scale` as its vertices,
+/// and `triangles` (indices into points_O) as its faces, or no faces when null (MuJoCo then
+/// makes the points' convex hull). Shared by MJCF export and the renderer's model.
+std::string FormatMjcfMesh(const std::string& name, const std::vector<Eigen::Vector3d>& points_O,
+                           const std::vector<Eigen::Vector3i>* triangles, double scale);
+
 }  // namespace prs::exporting

@@ -1,12 +1,17 @@
 // MJCF for MuJoCo: one body per object under the worldbody, static bodies welded to the world,
-// free bodies with a free joint and an explicit inertial; a ground plane at z = 0.
+// free bodies with a free joint and an explicit inertial; a ground plane at z = 0. A mesh body
+// has its triangles as a visual geom and its convex pieces (shapes/decompose.h) as collision
+// geoms, since MuJoCo collides each mesh geom as its convex hull.
 // Written as text: MuJoCo has no writer for models it did not compile itself (mj_saveLastXML
 // needs a loaded model), and the elements used here are few.
 #include <fmt/format.h>
 
 #include <cmath>
+#include <map>
+#include <utility>
 
 #include "export/writers.h"
+#include "shapes/decompose.h"
 
 namespace prs::exporting::internal {
 namespace {
@@ -15,6 +20,36 @@ std::string FormatQuaternion(const Eigen::Quaterniond& R) {  // MuJoCo's order: 
   return FormatNumber(R.w()) + " " + FormatNumber(R.x()) + " " + FormatNumber(R.y()) + " " +
          FormatNumber(R.z());
 }
+
+// The mesh assets of a scene: one set per distinct mesh and scale, shared by its bodies.
+class MeshAssets {
+ public:
+  struct Entry {
+    std::string name;  // "mesh3"; its convex pieces are "mesh3_piece0", "mesh3_piece1", ...
+    size_t piece_count = 0;
+  };
+
+  const Entry& Of(const Body& body) {
+    const auto key = std::make_pair(body.mesh.get(), body.mesh_scale);
+    if (auto it = entries_.find(key); it != entries_.end()) return it->second;
+    Entry entry{"mesh" + std::to_string(entries_.size())};
+    text_ += "    " + FormatMjcfMesh(entry.name, body.mesh->mesh.vertices_O,
+                                     &body.mesh->mesh.triangles, body.mesh_scale) + "\n";
+    const auto pieces = shapes::CalcConvexPieces(*body.mesh);
+    for (size_t k = 0; k < pieces->size(); ++k) {
+      text_ += "    " + FormatMjcfMesh(entry.name + "_piece" + std::to_string(k),
+                                       (*pieces)[k].points_O, nullptr, body.mesh_scale) + "\n";
+    }
+    entry.piece_count = pieces->size();
+    return entries_.emplace(key, std::move(entry)).first->second;
+  }
+  // The <mesh> elements, one per line.
+  const std::string& text() const { return text_; }
+
+ private:
+  std::map<std::pair<const shapes::MeshShape*, double>, Entry> entries_;
+  std::string text_;
+};
 
 // MuJoCo sizes are half-extents; a cylinder's are radius and half-height.
 std::string FormatGeomType(const Body& body) {
@@ -30,7 +65,25 @@ std::string FormatGeomType(const Body& body) {
 // with +z up. The quarter turn about x maps one onto the other.
 bool IsCamera(const Body& body) { return body.class_name == "Camera"; }
 
-void AppendBody(const Body& body, std::string& out) {
+// A mesh body: its triangles drawn (group 1, no contacts), its convex pieces colliding (group 3,
+// hidden in MuJoCo's default view).
+void AppendMeshGeoms(const Body& body, MeshAssets& assets, std::string& out) {
+  const MeshAssets::Entry& mesh = assets.Of(body);
+  const std::string rgba = FormatRgba(body.color);
+  fmt::format_to(std::back_inserter(out),
+                 "      <geom name=\"{}\" type=\"mesh\" mesh=\"{}\" rgba=\"{}\" group=\"1\" "
+                 "contype=\"0\" conaffinity=\"0\"/>\n",
+                 body.name, mesh.name, rgba);
+  if (!body.collides) return;
+  for (size_t k = 0; k < mesh.piece_count; ++k) {
+    fmt::format_to(std::back_inserter(out),
+                   "      <geom name=\"{}_piece{}\" type=\"mesh\" mesh=\"{}_piece{}\" rgba=\"{}\" "
+                   "group=\"3\"/>\n",
+                   body.name, k, mesh.name, k, rgba);
+  }
+}
+
+void AppendBody(const Body& body, MeshAssets& assets, std::string& out) {
   fmt::format_to(std::back_inserter(out), "    <body name=\"{}\" pos=\"{}\" quat=\"{}\">\n",
                  body.name, FormatVector(body.p_WO), FormatQuaternion(body.R_WO));
   if (body.is_free()) {
@@ -39,7 +92,9 @@ void AppendBody(const Body& body, std::string& out) {
                    "      <inertial pos=\"0 0 0\" mass=\"{}\" diaginertia=\"{}\"/>\n",
                    body.name, FormatNumber(body.mass_kg), FormatVector(body.inertia_diag));
   }
-  if (body.shape != Shape::kNone) {
+  if (body.shape == Shape::kMesh) {
+    AppendMeshGeoms(body, assets, out);
+  } else if (body.shape != Shape::kNone) {
     fmt::format_to(std::back_inserter(out), "      <geom name=\"{}\" {} rgba=\"{}\"{}/>\n",
                    body.name, FormatGeomType(body), FormatRgba(body.color),
                    body.collides ? "" : " contype=\"0\" conaffinity=\"0\"");
@@ -56,18 +111,45 @@ void AppendBody(const Body& body, std::string& out) {
 }  // namespace
 
 std::string WriteMjcf(const ExportScene& scene) {
+  MeshAssets assets;
+  std::string bodies;
+  for (const Body& body : scene.bodies) AppendBody(body, assets, bodies);
   std::string out = fmt::format(
       "<!-- ProbRobScene scene {}: load with mujoco.MjModel.from_xml_path or `simulate` -->\n"
       "<mujoco model=\"prs_scene\">\n"
       "  <compiler angle=\"radian\" autolimits=\"true\"/>\n"
-      "  <option gravity=\"0 0 {}\"/>\n"
+      "  <option gravity=\"0 0 {}\"/>\n{}"
       "  <worldbody>\n"
       "    <light name=\"sun\" pos=\"0 0 5\" dir=\"0 0 -1\" directional=\"true\"/>\n"
       "    <geom name=\"ground\" type=\"plane\" size=\"0 0 0.05\" rgba=\"0.9 0.9 0.9 1\"/>\n",
-      scene.title, FormatNumber(-kGravity));
-  for (const Body& body : scene.bodies) AppendBody(body, out);
+      scene.title, FormatNumber(-kGravity),
+      assets.text().empty() ? "" : "  <asset>\n" + assets.text() + "  </asset>\n");
+  out += bodies;
   out += "  </worldbody>\n</mujoco>\n";
   return out;
 }
 
 }  // namespace prs::exporting::internal
+
+namespace prs::exporting {
+
+std::string FormatMjcfMesh(const std::string& name, const std::vector<Eigen::Vector3d>& points_O,
+                           const std::vector<Eigen::Vector3i>* triangles, double scale) {
+  std::string out = "<mesh name=\"" + name + "\" vertex=\"";
+  for (size_t i = 0; i < points_O.size(); ++i) {
+    if (i > 0) out += ' ';
+    out += internal::FormatVector(points_O[i] * scale);
+  }
+  out += '"';
+  if (triangles) {
+    out += " face=\"";
+    for (size_t i = 0; i < triangles->size(); ++i) {
+      const Eigen::Vector3i& t = (*triangles)[i];
+      fmt::format_to(std::back_inserter(out), "{}{} {} {}", i > 0 ? " " : "", t[0], t[1], t[2]);
+    }
+    out += '"';
+  }
+  return out + "/>";
+}
+
+}  // namespace prs::exporting

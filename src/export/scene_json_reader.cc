@@ -3,16 +3,12 @@
 // same rules as a sampled scene's.
 #include <fmt/format.h>
 
-#include <filesystem>
-#include <fstream>
-#include <map>
-#include <mutex>
 #include <nlohmann/json.hpp>
-#include <sstream>
 #include <stdexcept>
 
 #include "export/body_rules.h"
 #include "export/export.h"
+#include "shapes/mesh_file.h"
 
 namespace prs::exporting {
 namespace {
@@ -85,31 +81,13 @@ internal::Properties ReadProperties(const json& object, const std::string& where
 }
 
 // A mesh shape as `prs sample` writes it ({"mesh": NAME, "path": PATH, "scale": S}), read from
-// PATH (once per process) so that exports carry the mesh; nullptr with a warning when the file
-// cannot be used, and the object goes out as its bounding box.
+// PATH so that exports carry the mesh; nullptr with a warning when the file cannot be used, and
+// the object goes out as its bounding box.
 std::shared_ptr<const shapes::MeshShape> LoadMeshOfShape(const json& shape, const std::string& where,
                                                          std::vector<std::string>& warnings) {
   const std::string path = shape.at("path").get<std::string>();
-  static std::mutex mutex;
-  static std::map<std::string, std::shared_ptr<const shapes::MeshShape>> loaded;
-  std::lock_guard<std::mutex> lock(mutex);
-  if (auto it = loaded.find(path); it != loaded.end()) return it->second;
-  std::error_code error;
-  const std::string extension = std::filesystem::path(path).extension().string();
-  const bool usable = shapes::IsSupportedMeshExtension(extension.empty() ? "" : extension.substr(1)) &&
-                      std::filesystem::is_regular_file(path, error) &&
-                      std::filesystem::file_size(path, error) < (uint64_t(1) << 28);
-  std::string problem = "is not a mesh file that can be read here";
-  if (usable) {
-    std::ifstream in(path, std::ios::binary);
-    std::stringstream bytes;
-    bytes << in.rdbuf();
-    try {
-      return loaded[path] = shapes::LoadMeshShape(bytes.str(), shape.at("mesh").get<std::string>(), path);
-    } catch (const shapes::MeshError& e) {
-      problem = e.what();
-    }
-  }
+  std::string problem;
+  if (auto mesh = shapes::LoadRecordedMesh(shape.at("mesh").get<std::string>(), path, problem)) return mesh;
   warnings.push_back(fmt::format("{}: its mesh file '{}' {}; exported as its bounding box", where,
                                  path, problem));
   return nullptr;

@@ -1,6 +1,7 @@
 // USD text (.usda) for Isaac Sim and other USD tools: Z-up, metres, one Xform per object under
-// /World with its exact translate and orient, a Cube or Cylinder child for its shape, and the
-// UsdPhysics schemas (collision on shapes; rigid body and mass on free bodies).
+// /World with its exact translate and orient, a Cube, Cylinder or Mesh child for its shape, and
+// the UsdPhysics schemas (collision on shapes, a mesh's by convex decomposition, which USD
+// simulators compute themselves; rigid body and mass on free bodies).
 // Written as text: no USD library is packaged for Debian 12.
 #include <fmt/format.h>
 
@@ -14,18 +15,42 @@ std::string FormatTuple(const Eigen::Vector3d& v) {
 }
 
 // The prim's metadata listing its physics schemas; `indent` is the prim's own indentation.
-std::string FormatSchemas(bool rigid_body, bool collides, const std::string& indent) {
+std::string FormatSchemas(bool rigid_body, bool collides, const std::string& indent,
+                          bool mesh = false) {
   std::string schemas;
   if (rigid_body) schemas += "\"PhysicsRigidBodyAPI\", \"PhysicsMassAPI\"";
   if (collides) schemas += std::string(schemas.empty() ? "" : ", ") + "\"PhysicsCollisionAPI\"";
+  if (collides && mesh) schemas += ", \"PhysicsMeshCollisionAPI\"";
   if (schemas.empty()) return "";
   return " (\n" + indent + "    prepend apiSchemas = [" + schemas + "]\n" + indent + ")";
 }
 
-// The shape prim; a Cube of size 1 scaled to the box, or a Cylinder along local z.
+// A mesh's triangles in the body's frame (bounding box centred, scaled).
+void AppendMeshData(const Body& body, std::string& out) {
+  const shapes::TriangleMesh& mesh = body.mesh->mesh;
+  out += "            int[] faceVertexCounts = [";
+  for (size_t i = 0; i < mesh.triangles.size(); ++i) out += i > 0 ? ", 3" : "3";
+  out += "]\n            int[] faceVertexIndices = [";
+  for (size_t i = 0; i < mesh.triangles.size(); ++i) {
+    const Eigen::Vector3i& t = mesh.triangles[i];
+    fmt::format_to(std::back_inserter(out), "{}{}, {}, {}", i > 0 ? ", " : "", t[0], t[1], t[2]);
+  }
+  out += "]\n            point3f[] points = [";
+  for (size_t i = 0; i < mesh.vertices_O.size(); ++i) {
+    out += (i > 0 ? ", " : "") + FormatTuple(mesh.vertices_O[i] * body.mesh_scale);
+  }
+  out += "]\n            uniform token subdivisionScheme = \"none\"\n";
+  if (body.collides) out += "            uniform token physics:approximation = \"convexDecomposition\"\n";
+}
+
+// The shape prim; a Cube of size 1 scaled to the box, a Cylinder along local z, or a Mesh.
 void AppendShape(const Body& body, std::string& out) {
-  const std::string schemas = FormatSchemas(false, body.collides, "        ");
-  if (body.shape == Shape::kCylinder) {
+  const bool mesh = body.shape == Shape::kMesh;
+  const std::string schemas = FormatSchemas(false, body.collides, "        ", mesh);
+  if (mesh) {
+    fmt::format_to(std::back_inserter(out), "\n        def Mesh \"shape\"{}\n        {{\n", schemas);
+    AppendMeshData(body, out);
+  } else if (body.shape == Shape::kCylinder) {
     fmt::format_to(std::back_inserter(out),
                    "\n        def Cylinder \"shape\"{}\n        {{\n"
                    "            uniform token axis = \"Z\"\n"

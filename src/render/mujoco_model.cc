@@ -1,6 +1,8 @@
 // MuJoCo models from text (see mujoco_model.h), and the render model: what is the same in
 // every picture. Objects are not in it: they are added per scene as decoration geoms (see
-// renderer.cc), so one model serves all.
+// renderer.cc), so one model serves all scenes of the same meshes. A mesh must be an asset of
+// the model to be drawn: the render model then also holds the scene's meshes, each with one
+// static geom from which the renderer copies the mesh's drawing (see scene_geoms.h).
 #include "render/mujoco_model.h"
 
 #include <cstdio>
@@ -9,6 +11,9 @@
 #include <memory>
 #include <stdexcept>
 #include <string>
+
+#include "export/export.h"
+#include "shapes/mesh.h"
 
 namespace prs::render {
 namespace internal {
@@ -28,11 +33,13 @@ constexpr char kRenderModelXml[] = R"(<mujoco model="prs_render">
     <texture name="checker" type="2d" builtin="checker" rgb1="0.86 0.86 0.84"
              rgb2="0.78 0.78 0.76" width="64" height="64"/>
     <material name="floor" texture="checker" texrepeat="1 1" texuniform="true"/>
-  </asset>
+)";
+constexpr char kRenderModelXmlMiddle[] = R"(  </asset>
   <worldbody>
     <light name="sun" directional="true" castshadow="true" pos="0 0 10" dir="0.35 0.55 -1"
            diffuse="0.45 0.45 0.45" specular="0.15 0.15 0.15"/>
-  </worldbody>
+)";
+constexpr char kRenderModelXmlEnd[] = R"(  </worldbody>
 </mujoco>
 )";
 
@@ -48,7 +55,21 @@ void PrintMujocoErrorAndExit(const char* message) {
 
 }  // namespace
 
-ModelPtr LoadRenderModel() { return LoadModelFromXml(kRenderModelXml); }
+ModelPtr LoadRenderModel(const std::vector<MeshKey>& meshes) {
+  std::string assets, geoms;
+  for (size_t i = 0; i < meshes.size(); ++i) {
+    const std::string name = RenderMeshName(i);
+    const shapes::MeshShape& mesh = *meshes[i].first;
+    assets += "    " + exporting::FormatMjcfMesh(name, mesh.mesh.vertices_O, &mesh.mesh.triangles,
+                                                 meshes[i].second) + "\n";
+    geoms += "    <geom name=\"" + name + "\" type=\"mesh\" mesh=\"" + name +
+             "\" contype=\"0\" conaffinity=\"0\"/>\n";
+  }
+  return LoadModelFromXml(kRenderModelXml + assets + kRenderModelXmlMiddle + geoms +
+                          kRenderModelXmlEnd);
+}
+
+std::string RenderMeshName(size_t index) { return "mesh" + std::to_string(index); }
 
 }  // namespace internal
 

@@ -7,6 +7,12 @@
 
 #include <memory>
 #include <string>
+#include <utility>
+#include <vector>
+
+namespace prs::shapes {
+struct MeshShape;  // shapes/mesh.h
+}
 
 namespace prs::render {
 
@@ -31,8 +37,13 @@ DataPtr MakeData(const mjModel& model);
 void InstallMujocoMessageHandlers();
 
 namespace internal {
-/// The fixed model every scene picture shares (sky, checker floor texture, sun light).
-ModelPtr LoadRenderModel();
+/// A mesh at a scale, as the render model holds it.
+using MeshKey = std::pair<const shapes::MeshShape*, double>;
+/// The model scene pictures share (sky, checker floor texture, sun light), with `meshes` as
+/// assets: mesh i is asset RenderMeshName(i), drawn by a static world geom of that name at the
+/// identity pose (so that the geom's compiled pose is where MuJoCo moved the mesh's frame).
+ModelPtr LoadRenderModel(const std::vector<MeshKey>& meshes = {});
+std::string RenderMeshName(size_t index);
 }  // namespace internal
 
 }  // namespace prs::render

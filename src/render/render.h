@@ -12,6 +12,10 @@
 #include <utility>
 #include <vector>
 
+namespace prs::shapes {
+struct MeshShape;  // shapes/mesh.h
+}
+
 namespace prs::render {
 
 /// An 8-bit RGB picture, rows from the top, 3 bytes per pixel.
@@ -32,7 +36,7 @@ struct DepthImage {
 /// Linear RGBA in [0, 1].
 using Rgba = std::array<float, 4>;
 
-enum class ObjectShape { kBox, kCylinder, kPoint, kCamera };
+enum class ObjectShape { kBox, kCylinder, kPoint, kCamera, kMesh };
 
 /// One object as the renderer needs it (converted from a lang::SceneObject or a JSON object).
 struct RenderObject {
@@ -42,6 +46,10 @@ struct RenderObject {
   Eigen::Quaterniond R_WO = Eigen::Quaterniond::Identity();
   Eigen::Vector3d dimensions = Eigen::Vector3d::Zero();  // width (x), length (y), height (z)
   ObjectShape shape = ObjectShape::kBox;
+  /// kMesh: the object's mesh (its bounding box centred on p_WO) and the factor on its file's
+  /// coordinates. Set before the shape is classified; an object without one is drawn as a box.
+  std::shared_ptr<const shapes::MeshShape> mesh;
+  double mesh_scale = 1;
   Rgba color = {0.75f, 0.72f, 0.66f, 1.0f};
   // Cameras: the vertical field of view (degrees) and width / height of what they see (the
   // object's fovy_deg and aspect, as `in view of` and MJCF export read them), for the frustum

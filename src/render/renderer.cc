@@ -27,23 +27,67 @@ struct Renderer::State {
   mjrContext context;
   int buffer_width = 0, buffer_height = 0;
   int floor_texture = -1;
+  std::vector<internal::MeshKey> meshes;  // the render model's, in asset order
 
   State() {
-    model_owner = internal::LoadRenderModel();
-    data_owner = MakeData(*model_owner);
-    model = model_owner.get();
-    data = data_owner.get();
-    mj_forward(model, data);  // the lights' world positions and directions
     mjv_defaultScene(&scene);
-    mjv_defaultOption(&option);
-    mjv_defaultFreeCamera(model, &camera);
     mjr_defaultContext(&context);
-    floor_texture = model->mat_texid[mj_name2id(model, mjOBJ_MATERIAL, "floor")];
+    LoadModel();
   }
   ~State() {
     mjr_freeContext(&context);
     mjv_freeScene(&scene);
   }
+
+  // (Re)loads the render model with `meshes` as assets; the scene and the render context
+  // (which holds the model's meshes) are made again on their next use.
+  void LoadModel() {
+    model_owner = internal::LoadRenderModel(meshes);
+    data_owner = MakeData(*model_owner);
+    model = model_owner.get();
+    data = data_owner.get();
+    mj_forward(model, data);  // the lights' world positions and directions
+    mjv_freeScene(&scene);
+    mjv_defaultScene(&scene);
+    mjv_defaultOption(&option);
+    mjv_defaultFreeCamera(model, &camera);
+    floor_texture = model->mat_texid[mj_name2id(model, mjOBJ_MATERIAL, "floor")];
+    buffer_width = buffer_height = 0;  // EnsureBuffer makes the context again
+  }
+
+  // Makes the model hold the meshes of `scene` (reloading it only when they change).
+  void UseMeshesOf(const RenderScene& scene) {
+    std::vector<internal::MeshKey> wanted;
+    for (const RenderObject& o : scene.objects) {
+      const internal::MeshKey key(o.mesh.get(), o.mesh_scale);
+      if (o.shape == ObjectShape::kMesh && o.mesh &&
+          std::find(wanted.begin(), wanted.end(), key) == wanted.end())
+        wanted.push_back(key);
+    }
+    // Keep meshes already loaded when the new scene's are among them (a grid of scenes).
+    if (std::all_of(wanted.begin(), wanted.end(), [&](const internal::MeshKey& key) {
+          return std::find(meshes.begin(), meshes.end(), key) != meshes.end();
+        }))
+      return;
+    meshes = std::move(wanted);
+    mesh_owners.clear();
+    for (const RenderObject& o : scene.objects)
+      if (o.mesh) mesh_owners.push_back(o.mesh);
+    LoadModel();
+  }
+
+  // The model's mesh geoms as mjv_updateScene drew them (geom i draws mesh i).
+  std::vector<MeshDrawing> ReadMeshDrawings() const {
+    std::vector<MeshDrawing> drawings;
+    for (int i = 0; i < scene.ngeom; ++i) {
+      const mjvGeom& geom = scene.geoms[i];
+      if (geom.objtype == mjOBJ_GEOM && geom.objid >= 0 && geom.objid < int(meshes.size()))
+        drawings.push_back({meshes[geom.objid], geom});
+    }
+    return drawings;
+  }
+
+  std::vector<std::shared_ptr<const shapes::MeshShape>> mesh_owners;  // keep `meshes` alive
 
   // MuJoCo 2.2 sizes its offscreen buffer once, from the model, when the context is made.
   void EnsureBuffer(int width, int height) {
@@ -130,15 +174,18 @@ Image Renderer::Render(const RenderScene& scene, const RenderOptions& options, D
   const CameraPose pose = CalcViewPose(scene, options);  // may throw: check before drawing
   State& s = *state_;
   s.egl.MakeCurrent();
+  s.UseMeshesOf(scene);
   s.EnsureBuffer(options.width, options.height);
-  s.EnsureGeomCapacity(CountSceneGeoms(scene));  // remakes the scene: before updating it
+  // Remakes the scene: before updating it. The model's own geoms are its meshes.
+  s.EnsureGeomCapacity(CountSceneGeoms(scene) + s.model->ngeom);
   mjv_updateScene(s.model, s.data, &s.option, nullptr, &s.camera, mjCAT_ALL, &s.scene);
+  const std::vector<MeshDrawing> meshes = s.ReadMeshDrawings();
   const SceneExtent extent = CalcSceneExtent(scene);
   s.scene.ngeom = 0;
   const RenderObject* viewpoint = options.view.kind == ViewKind::kCamera
                                       ? &FindViewpointObject(scene, options.view.camera_name)
                                       : nullptr;  // a camera does not see its own body
-  AddSceneGeoms(scene, viewpoint, extent, s.floor_texture, s.model, s.scene);
+  AddSceneGeoms(scene, viewpoint, extent, s.floor_texture, s.model, meshes, s.scene);
   // Through a camera, its own field of view (the picture's size sets the aspect).
   const double fovy_deg = viewpoint ? viewpoint->fovy_deg : options.camera_fovy_deg;
   PlaceCameraAndLights(s.scene, s.context, pose, extent, fovy_deg);

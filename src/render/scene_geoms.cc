@@ -82,9 +82,34 @@ void AddBoxEdges(mjvScene& out, const RenderObject& o, const Eigen::Matrix3d& R_
   }
 }
 
-void AddObject(mjvScene& out, const RenderObject& o, double edge_width_m) {
+// A copy of the mesh's drawing, moved from the identity pose to the object's.
+void AddMesh(mjvScene& out, const RenderObject& o, const Eigen::Matrix3d& R_WO,
+             const mjvGeom& drawing) {
+  using RowMajor3 = Eigen::Matrix<float, 3, 3, Eigen::RowMajor>;
+  mjvGeom& geom = NextGeom(out);
+  geom = drawing;
+  const Eigen::Map<const Eigen::Vector3f> p_OG(drawing.pos);
+  const Eigen::Map<const RowMajor3> R_OG(drawing.mat);
+  Eigen::Map<Eigen::Vector3f>(geom.pos) = (o.p_WO + R_WO * p_OG.cast<double>()).cast<float>();
+  Eigen::Map<RowMajor3>(geom.mat) = (R_WO * R_OG.cast<double>()).cast<float>();
+  for (int i = 0; i < 4; ++i) geom.rgba[i] = o.color[i];
+  geom.objtype = mjOBJ_UNKNOWN;
+  geom.objid = -1;
+  geom.category = mjCAT_DECOR;
+  geom.specular = 0.25f;
+  geom.shininess = 0.3f;
+}
+
+void AddObject(mjvScene& out, const RenderObject& o, double edge_width_m,
+               const std::vector<MeshDrawing>& meshes) {
   const Eigen::Matrix3d R_WO = o.R_WO.toRotationMatrix();
   switch (o.shape) {
+    case ObjectShape::kMesh:
+      for (const MeshDrawing& drawing : meshes) {
+        if (drawing.key == internal::MeshKey(o.mesh.get(), o.mesh_scale))
+          return AddMesh(out, o, R_WO, drawing.geom);
+      }
+      [[fallthrough]];  // not in the model: its box
     case ObjectShape::kBox:
       AddSolid(out, mjGEOM_BOX, o.dimensions / 2, o.p_WO, R_WO, o.color);
       return AddBoxEdges(out, o, R_WO, std::min(edge_width_m, 0.05 * o.dimensions.minCoeff()));
@@ -136,19 +161,19 @@ int CountSceneGeoms(const RenderScene& scene) {
   int count = 1 + static_cast<int>(scene.workspace_edges.size());  // floor, outline
   for (const RegionOutline& region : scene.regions) count += static_cast<int>(region.edges.size());
   for (const RenderObject& o : scene.objects)
-    count += o.shape == ObjectShape::kCamera ? 1 + kFrustumEdges
-             : o.shape == ObjectShape::kBox  ? 1 + kBoxEdges
-                                             : 1;
+    count += o.shape == ObjectShape::kCamera                              ? 1 + kFrustumEdges
+             : o.shape == ObjectShape::kBox || o.shape == ObjectShape::kMesh ? 1 + kBoxEdges
+                                                                             : 1;
   return count;
 }
 
 void AddSceneGeoms(const RenderScene& scene, const RenderObject* viewpoint,
                    const SceneExtent& extent, int floor_texture, const mjModel* model,
-                   mjvScene& out) {
+                   const std::vector<MeshDrawing>& meshes, mjvScene& out) {
   AddFloor(out, extent, floor_texture, model);
   const double line_width = std::clamp(0.003 * extent.radius_m, 0.0015, 0.015);
   for (const RenderObject& o : scene.objects) {
-    if (&o != viewpoint) AddObject(out, o, line_width / 2);
+    if (&o != viewpoint) AddObject(out, o, line_width / 2, meshes);
   }
   for (const auto& [a_W, b_W] : scene.workspace_edges)
     AddLine(out, a_W, b_W, line_width, {0.3f, 0.38f, 0.55f, 1.0f});

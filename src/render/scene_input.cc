@@ -1,5 +1,5 @@
 // Scenes to RenderScene: from the sampler's lang::Scene or from a JSON line, through one
-// classification of shapes (box, cylinder, point, camera) and one colour parser.
+// classification of shapes (box, cylinder, mesh, point, camera) and one colour parser.
 #include "render/scene_input.h"
 
 #include <algorithm>
@@ -11,6 +11,7 @@
 
 #include "lang/program.h"
 #include "export/color.h"
+#include "shapes/mesh_file.h"
 
 namespace prs::render {
 namespace {
@@ -34,6 +35,7 @@ ObjectShape ClassifyShape(const RenderObject& object, const DrawProperties& prop
   if (ContainsCamera(object.class_name) || ContainsCamera(properties.model_name))
     return ObjectShape::kCamera;
   if (object.dimensions.isZero()) return ObjectShape::kPoint;
+  if (object.mesh) return ObjectShape::kMesh;
   if (properties.shape_type == "cylinder") return ObjectShape::kCylinder;
   return ObjectShape::kBox;
 }
@@ -154,6 +156,19 @@ DrawProperties ReadDrawProperties(const nlohmann::json& object) {
   return properties;
 }
 
+// A mesh shape as `prs sample` writes it ({"mesh": NAME, "path": PATH, "scale": S}), read from
+// PATH; when the file cannot be read here the object is drawn as its box.
+void ReadMesh(const nlohmann::json& shape, RenderObject& object) {
+  if (!shape.is_object()) return;
+  const auto mesh = shape.find("mesh"), path = shape.find("path"), scale = shape.find("scale");
+  if (mesh == shape.end() || path == shape.end() || scale == shape.end() || !mesh->is_string() ||
+      !path->is_string() || !scale->is_number() || !(scale->get<double>() > 0))
+    return;
+  std::string problem;
+  object.mesh = shapes::LoadRecordedMesh(mesh->get<std::string>(), path->get<std::string>(), problem);
+  object.mesh_scale = scale->get<double>();
+}
+
 RenderObject ReadJsonObject(const nlohmann::json& json, size_t index,
                             std::vector<std::string>* unknown_colors) {
   if (!json.is_object()) FailJson(index, "is not a JSON object");
@@ -167,6 +182,7 @@ RenderObject ReadJsonObject(const nlohmann::json& json, size_t index,
   object.p_WO = ReadVector3(json, "position", index);
   object.R_WO = ReadQuaternion(json, index);
   object.dimensions = ReadVector3(json, "dimensions", index);
+  ReadMesh(MemberOrEmpty(MemberOrEmpty(json, "properties"), "shape"), object);
   ApplyProperties(ReadDrawProperties(json), object, unknown_colors);
   return object;
 }
@@ -183,6 +199,8 @@ RenderScene MakeRenderScene(const lang::Scene& scene, std::vector<std::string>* 
     object.p_WO = source.p_WO;
     object.R_WO = source.R_WO.normalized();
     object.dimensions = source.dimensions;
+    object.mesh = source.mesh;
+    object.mesh_scale = source.mesh_scale;
     ApplyProperties(ReadDrawProperties(source), object, unknown_colors);
     result.objects.push_back(std::move(object));
   }

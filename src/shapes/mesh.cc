@@ -14,6 +14,7 @@
 #include <map>
 #include <string>
 
+#include "shapes/ply_header.h"
 #include "shapes/qhull_session.h"
 
 namespace prs::shapes {
@@ -120,6 +121,9 @@ std::shared_ptr<const MeshShape> LoadMeshShape(std::string_view bytes, const std
                     "); use " + SupportedMeshFormats());
   }
   if (bytes.empty()) throw MeshError("is empty");
+  if (extension == "ply") {
+    if (auto problem = internal::CheckPlyHeader(bytes)) throw MeshError(*problem);
+  }
   Assimp::Importer importer;
   // Lines and points are dropped; node transforms are applied (glTF scenes place their meshes).
   importer.SetPropertyInteger(AI_CONFIG_PP_SBP_REMOVE, aiPrimitiveType_POINT | aiPrimitiveType_LINE);

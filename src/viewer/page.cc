@@ -4,6 +4,7 @@
 #include <stdexcept>
 
 #include "output/scene_json.h"
+#include "shapes/mesh_file.h"
 #include "viewer/assets.h"
 #include "viewer/viewer.h"
 
@@ -24,6 +25,52 @@ json MakeWorkspaceJson(const lang::Scene& scene) {
     return nullptr;
   }
   return {{"dimension", scene.workspace->dimension()}, {"vertices", std::move(vertices)}};
+}
+
+// A mesh's triangles for three.js, in its frame at scale 1: {"vertices": [x, y, z, ...],
+// "triangles": [i, j, k, ...]} (flat arrays).
+json MakeMeshJson(const shapes::MeshShape& mesh) {
+  json vertices = json::array(), triangles = json::array();
+  for (const Eigen::Vector3d& p : mesh.mesh.vertices_O) {
+    for (int i = 0; i < 3; ++i) vertices.push_back(p[i]);
+  }
+  for (const Eigen::Vector3i& t : mesh.mesh.triangles) {
+    for (int i = 0; i < 3; ++i) triangles.push_back(t[i]);
+  }
+  return {{"vertices", std::move(vertices)}, {"triangles", std::move(triangles)}};
+}
+
+// The meshes of a scene by the path its line records, so that the page draws them.
+json MakeMeshesJson(const lang::Scene& scene) {
+  json meshes = json::object();
+  for (const lang::SceneObject& object : scene.objects) {
+    if (object.mesh && !meshes.contains(object.mesh->path))
+      meshes[object.mesh->path] = MakeMeshJson(*object.mesh);
+  }
+  return meshes;
+}
+
+// The same for a line read back from a scenes file: each mesh re-read from its recorded path;
+// one that cannot be read is left out (the page then draws the object's box).
+json MakeMeshesJsonOfLine(std::string_view line) {
+  json meshes = json::object();
+  const json scene = json::parse(line, nullptr, /*allow_exceptions=*/false);
+  const auto objects = scene.is_object() ? scene.find("objects") : scene.end();
+  if (!scene.is_object() || objects == scene.end() || !objects->is_array()) return meshes;
+  for (const json& object : *objects) {
+    const auto properties = object.is_object() ? object.find("properties") : object.end();
+    if (!object.is_object() || properties == object.end() || !properties->is_object()) continue;
+    const auto shape = properties->find("shape");
+    if (shape == properties->end() || !shape->is_object()) continue;
+    const auto mesh = shape->find("mesh"), path = shape->find("path");
+    if (mesh == shape->end() || path == shape->end() || !mesh->is_string() || !path->is_string() ||
+        meshes.contains(path->get<std::string>()))
+      continue;
+    std::string problem;
+    if (auto loaded = shapes::LoadRecordedMesh(mesh->get<std::string>(), path->get<std::string>(), problem))
+      meshes[path->get<std::string>()] = MakeMeshJson(*loaded);
+  }
+  return meshes;
 }
 
 std::string EscapeHtml(std::string_view text) {
@@ -82,12 +129,13 @@ json MakeConfig(const PageInfo& info, const char* mode) {
 
 std::string FormatViewRecord(const sampling::SampledScene& sampled) {
   const json record = {{"line", output::FormatSceneJson(sampled)},
-                       {"workspace", MakeWorkspaceJson(sampled.scene)}};
+                       {"workspace", MakeWorkspaceJson(sampled.scene)},
+                       {"meshes", MakeMeshesJson(sampled.scene)}};
   return record.dump();
 }
 
 std::string FormatViewRecordOfLine(std::string_view line) {
-  const json record = {{"line", line}, {"workspace", nullptr}};
+  const json record = {{"line", line}, {"workspace", nullptr}, {"meshes", MakeMeshesJsonOfLine(line)}};
   return record.dump(-1, ' ', false, json::error_handler_t::replace);
 }
 

@@ -16,12 +16,15 @@ namespace prs::viewer {
 
 /// One scene as the page reads it: {"line": the prs-scene/1 line exactly as `prs sample`
 /// writes it, "workspace": {"dimension": d, "vertices": [[x, y, z], ...]} or null (no
-/// workspace, or one that is empty or unbounded)}. Vertices are in metres, world frame; a
-/// planar workspace's come in cyclic order.
+/// workspace, or one that is empty or unbounded), "meshes": {PATH: {"vertices": [x, y, z, ...],
+/// "triangles": [i, j, k, ...]}, ...}}. Vertices are in metres, world frame; a planar
+/// workspace's come in cyclic order. Meshes are keyed by the path the line records for an
+/// object's mesh shape, in the mesh's own frame at scale 1 (its bounding box centred).
 std::string FormatViewRecord(const sampling::SampledScene& sampled);
 
 /// The record of a scene line read back from a scenes file (`prs sample` output): the line as
-/// it is, and no workspace (the line does not carry it).
+/// it is, no workspace (the line does not carry it), and the meshes it names that can be read
+/// from their recorded paths.
 std::string FormatViewRecordOfLine(std::string_view line);
 
 /// {"error": {"id": ID, "message": MESSAGE}}: what the server answers instead of a record.

@@ -79,6 +79,39 @@ std::vector<bool> FindRestingBodies(const ExportScene& scene) {
   return resting;
 }
 
+// A mesh body's visual geom draws the mesh where the scene has it: its vertices, placed by
+// MuJoCo's geom frame (the compiler moves a mesh to its own inertial frame), span the body's
+// box in the body's frame. Its collision pieces do not draw and do collide.
+void ExpectMeshAsInScene(const mjModel& m, const Body& body, int geom, const std::string& label) {
+  ASSERT_EQ(m.geom_type[geom], mjGEOM_MESH) << label << " " << body.name;
+  EXPECT_EQ(m.geom_contype[geom] | m.geom_conaffinity[geom], 0) << body.name;
+  const int mesh = m.geom_dataid[geom];
+  EXPECT_EQ(m.mesh_vertnum[mesh], int(body.mesh->mesh.vertices_O.size())) << body.name;
+  EXPECT_EQ(m.mesh_facenum[mesh], int(body.mesh->mesh.triangles.size())) << body.name;
+  const Eigen::Map<const Eigen::Vector3d> p_BG(m.geom_pos + 3 * geom);
+  const mjtNum* q = m.geom_quat + 4 * geom;
+  const Eigen::Quaterniond R_BG(q[0], q[1], q[2], q[3]);
+  Eigen::Vector3d lo = Eigen::Vector3d::Constant(HUGE_VAL), hi = -lo;
+  for (int v = 0; v < m.mesh_vertnum[mesh]; ++v) {
+    const float* p = m.mesh_vert + 3 * (m.mesh_vertadr[mesh] + v);
+    const Eigen::Vector3d p_B = p_BG + R_BG * Eigen::Vector3d(p[0], p[1], p[2]);
+    lo = lo.cwiseMin(p_B);
+    hi = hi.cwiseMax(p_B);
+  }
+  const double error_m = std::max((lo + body.size / 2).cwiseAbs().maxCoeff(),
+                                  (hi - body.size / 2).cwiseAbs().maxCoeff());
+  EXPECT_LT(error_m, 1e-5)  // MuJoCo keeps vertices as floats
+      << label << " " << body.name << ": mesh spans " << lo.transpose() << " to " << hi.transpose();
+  int pieces = 0;
+  for (int g = 0; g < m.ngeom; ++g) {
+    if (m.geom_bodyid[g] != m.geom_bodyid[geom] || g == geom) continue;
+    EXPECT_EQ(m.geom_type[g], mjGEOM_MESH);
+    EXPECT_EQ(m.geom_group[g], 3);  // hidden in MuJoCo's default view
+    ++pieces;
+  }
+  EXPECT_EQ(pieces > 0, body.collides) << label << " " << body.name;
+}
+
 void ExpectBodiesAsInScene(const mjModel& m, const ExportScene& scene, const std::string& label) {
   ASSERT_EQ(m.nbody, int(scene.bodies.size()) + 1) << label;  // + the world body
   for (const Body& body : scene.bodies) {
@@ -96,9 +129,12 @@ void ExpectBodiesAsInScene(const mjModel& m, const ExportScene& scene, const std
     if (body.shape == Shape::kNone) continue;
     const int geom = mj_name2id(&m, mjOBJ_GEOM, body.name.c_str());
     ASSERT_GE(geom, 0) << body.name;
-    // A mesh goes into MJCF as its bounding box for now.
+    if (body.shape == Shape::kMesh) {
+      ExpectMeshAsInScene(m, body, geom, label);
+      continue;
+    }
     EXPECT_EQ(m.geom_type[geom], body.shape == Shape::kCylinder ? mjGEOM_CYLINDER : mjGEOM_BOX);
-    if (body.shape == Shape::kBox || body.shape == Shape::kMesh) {
+    if (body.shape == Shape::kBox) {
       EXPECT_TRUE(
           SameVector(Eigen::Map<const Eigen::Vector3d>(m.geom_size + 3 * geom), body.size / 2));
     }
@@ -150,12 +186,6 @@ TEST(MjcfTest, RestingObjectsStayPutForOneSecond) {
   int checked = 0;
   double max_drift = 0;
   for (const auto& example : ExampleScenes()) {
-    // MJCF gets a mesh-shaped object's bounding box for now (a warning says so), and boxes
-    // overlap where meshes need not (a bowl under a shelf's board): their physics is checked
-    // once MJCF carries the meshes (issue 17).
-    const bool has_mesh = std::any_of(example.scene->objects.begin(), example.scene->objects.end(),
-                                      [](const lang::SceneObject& o) { return o.mesh != nullptr; });
-    if (has_mesh) continue;
     std::string error;
     const ModelPtr model = LoadMjcf(WriteScene(example.exported, Format::kMjcf), error);
     ASSERT_NE(model, nullptr) << example.label << ": " << error;

@@ -61,6 +61,44 @@ std::vector<double> ReadTuple(const std::string& prim, const std::string& attrib
   return numbers;
 }
 
+// The numbers of `ATTRIBUTE = [...]` in `prim`, tuples flattened: "[(1, 2, 3), (4, 5, 6)]"
+// gives 1, ..., 6.
+std::vector<double> ReadArray(const std::string& prim, const std::string& attribute) {
+  // By hand: std::regex recurses per character and overflows on a mesh's long arrays.
+  const size_t at = prim.find(attribute + " = [");
+  if (at == std::string::npos) return {};
+  const size_t begin = at + attribute.size() + 4, end = prim.find(']', begin);
+  std::string items = prim.substr(begin, end - begin);
+  for (char& c : items) c = (c == '(' || c == ')') ? ' ' : c;
+  std::vector<double> numbers;
+  std::stringstream stream(items);
+  for (std::string item; std::getline(stream, item, ',');) numbers.push_back(std::stod(item));
+  return numbers;
+}
+
+// A mesh's prim carries its triangles, in the body's frame: their bounding box is the body's.
+void ExpectMeshPrim(const std::string& prim, const Body& body) {
+  const std::string mesh = FindPrim(prim, "Mesh", "shape");
+  ASSERT_FALSE(mesh.empty()) << body.name;
+  const std::vector<double> counts = ReadArray(mesh, "int[] faceVertexCounts");
+  const std::vector<double> indices = ReadArray(mesh, "int[] faceVertexIndices");
+  const std::vector<double> points = ReadArray(mesh, "point3f[] points");
+  ASSERT_EQ(counts.size(), body.mesh->mesh.triangles.size()) << body.name;
+  ASSERT_EQ(indices.size(), 3 * counts.size()) << body.name;
+  ASSERT_EQ(points.size(), 3 * body.mesh->mesh.vertices_O.size()) << body.name;
+  for (double index : indices) EXPECT_LT(index, double(points.size() / 3));
+  Eigen::Vector3d lo = Eigen::Vector3d::Constant(HUGE_VAL), hi = -lo;
+  for (size_t i = 0; i < points.size(); i += 3) {
+    const Eigen::Vector3d p(points[i], points[i + 1], points[i + 2]);
+    lo = lo.cwiseMin(p);
+    hi = hi.cwiseMax(p);
+  }
+  EXPECT_TRUE(SameVector(hi, body.size / 2)) << body.name;
+  EXPECT_TRUE(SameVector(lo, -body.size / 2)) << body.name;
+  EXPECT_EQ(mesh.find("physics:approximation = \"convexDecomposition\"") != std::string::npos,
+            body.collides) << body.name;
+}
+
 void ExpectPrimAsInScene(const std::string& text, const Body& body, const std::string& label) {
   const std::string prim = FindPrim(text, "Xform", body.name);
   ASSERT_FALSE(prim.empty()) << label << ": no Xform " << body.name;
@@ -74,7 +112,8 @@ void ExpectPrimAsInScene(const std::string& text, const Body& body, const std::s
             std::string::npos);
   EXPECT_EQ(prim.find("PhysicsRigidBodyAPI") != std::string::npos, body.is_free()) << body.name;
   EXPECT_EQ(prim.find("PhysicsCollisionAPI") != std::string::npos, body.collides) << body.name;
-  if (body.shape == Shape::kBox || body.shape == Shape::kMesh) {  // a mesh: its bounding box
+  if (body.shape == Shape::kMesh) ExpectMeshPrim(prim, body);
+  if (body.shape == Shape::kBox) {
     const std::string cube = FindPrim(prim, "Cube", "shape");
     const std::vector<double> scale = ReadTuple(cube, "double3 xformOp:scale");
     ASSERT_EQ(scale.size(), 3u) << body.name;

@@ -8,6 +8,9 @@
 #include <cmath>
 #include <filesystem>
 
+#include "shapes/mesh.h"
+#include "shapes/test/test_meshes.h"
+
 namespace prs::render {
 namespace {
 
@@ -106,6 +109,35 @@ TEST(RenderTest, RedCubeSeenFromTopAppearsAtItsProjectedCentre) {
   // And nowhere near the opposite corner of the table.
   const Eigen::Vector2d away = Project({-0.6, -0.3, 0.5}, pose, options);
   EXPECT_FALSE(IsRed(PixelAt(image, int(away.x()), int(away.y()))));
+}
+
+// A red ring (a square frame 0.4 m across with a 0.2 m hole) lying on the table, its hole
+// over the table's centre: as a mesh the hole shows the grey table, as a box it is red.
+TEST(RenderTest, AMeshIsDrawnAsItsShapeNotItsBox) {
+  const auto ring = shapes::LoadMeshShape(shapes::testing::RingObj(0.4, 0.1, 0.05), "ring.obj",
+                                          "ring.obj");
+  RenderScene scene = MakeTableScene();
+  RenderObject& frame = scene.objects.emplace_back(
+      MakeBox("ring", {0, 0, 0.525}, {0.4, 0.4, 0.05}, {0.9f, 0.05f, 0.05f, 1}));
+  frame.R_WO = Eigen::AngleAxisd(M_PI / 2, Eigen::Vector3d::UnitX());  // the hole along z
+  frame.dimensions = {0.4, 0.05, 0.4};  // the ring's own axes: its bounding box
+  RenderOptions options;
+  options.view = ParseView("top");
+  const CameraPose pose = CalcViewPose(scene, options);
+  const Eigen::Vector2d hole = Project({0, 0, 0.55}, pose, options);
+  const Eigen::Vector2d bar = Project({0.15, 0, 0.55}, pose, options);
+
+  const Image as_box = SharedRenderer().Render(scene, options);
+  EXPECT_TRUE(IsRed(PixelAt(as_box, int(hole.x()), int(hole.y()))));
+  frame.mesh = ring;
+  frame.shape = ObjectShape::kMesh;
+  const Image as_mesh = SharedRenderer().Render(scene, options);
+  EXPECT_FALSE(IsRed(PixelAt(as_mesh, int(hole.x()), int(hole.y()))));
+  EXPECT_TRUE(IsRed(PixelAt(as_mesh, int(bar.x()), int(bar.y()))));
+  // The renderer goes back to boxes-only scenes without trouble.
+  const RenderScene boxes = MakeTableScene();
+  ExpectCubeRedAndUpRight(SharedRenderer().Render(boxes, options), CalcViewPose(boxes, options),
+                          options);
 }
 
 TEST(RenderTest, RegionOutlinesAreDrawnInTheirColours) {

@@ -98,6 +98,34 @@ TEST(MeshTest, BadFilesGetMessagesInOurWords) {
   EXPECT_FALSE(out_of_range.empty());
 }
 
+// PLY headers are checked before assimp reads the file (its reader loops forever on some
+// malformed ones): each malformation is refused, naming the line.
+TEST(MeshTest, MalformedPlyHeadersAreRefusedBeforeReading) {
+  const std::string good_header =
+      "ply\nformat ascii 1.0\nelement vertex 3\nproperty float x\nproperty float y\n"
+      "property float z\nelement face 1\nproperty list uchar int vertex_indices\nend_header\n";
+  const std::string body = "0 0 0\n1 0 0\n0 1 0\n3 0 1 2\n";
+  EXPECT_EQ(LoadMeshShape(good_header + body, "t.ply", "t.ply")->mesh.triangles.size(), 1u);
+  // The fuzzer's hang: a header cut inside a property line, then other bytes.
+  EXPECT_NE(LoadError("ply\nformat ascii 1.0\nelement vertex 4\nproperty floatbglTF", "t.ply")
+                .find("no end_header"),
+            std::string::npos);
+  auto with = [&](const std::string& from, const std::string& to) {
+    std::string text = good_header + body;
+    text.replace(text.find(from), from.size(), to);
+    return LoadError(text, "t.ply");
+  };
+  EXPECT_NE(with("property float y", "property floaty y").find("line 5"), std::string::npos);
+  EXPECT_NE(with("element vertex 3", "element vertex three").find("line 3"), std::string::npos);
+  EXPECT_NE(with("element vertex 3", "element vertex 3000000").find("more elements than"),
+            std::string::npos);
+  EXPECT_NE(with("format ascii 1.0", "format text 1.0").find("line 2"), std::string::npos);
+  EXPECT_NE(with("ply\n", "plyx\n").find("does not start with \"ply\""), std::string::npos);
+  EXPECT_NE(with("property list uchar int", "property list uchar").find("line 8"),
+            std::string::npos);
+  EXPECT_NE(with("format ascii 1.0\n", "").find("without a format line"), std::string::npos);
+}
+
 // The hull's vertices have the same support function as the whole set, in every direction.
 TEST(MeshTest, ConvexHullKeepsTheSupportFunction) {
   std::mt19937 gen(5);

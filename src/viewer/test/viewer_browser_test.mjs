@@ -192,6 +192,33 @@ async function checkColorsAndShapes(browser, dir) {
   await page.close();
 }
 
+// Mesh shapes (examples/kitchen_meshes.prs) are drawn as their triangles, not their boxes.
+async function checkMeshes(browser, dir) {
+  const kitchen = path.join(sourceDir, 'examples', 'kitchen_meshes.prs');
+  const file = path.join(dir, 'kitchen.html');
+  execFileSync(prs, ['view', kitchen, '--html', file], { stdio: 'ignore' });
+  const page = await openPage(browser, pathToFileURL(file).href, (url) => url.startsWith('file:'));
+  await waitForScene(page, 0);
+  const drawn = await page.evaluate(() => window.prsViewer.view.meshes.map((m) => ({
+    type: m.geometry.type, indices: m.geometry.index ? m.geometry.index.count : 0 })));
+  const scene = JSON.parse(await page.evaluate(() => document.getElementById('scene-json').textContent));
+  const meshShaped = scene.objects.map((o) => typeof o.properties.shape === 'object');
+  assert.ok(meshShaped.filter(Boolean).length >= 4, 'shelf, bowl and two mugs');
+  drawn.forEach((d, i) => {
+    if (meshShaped[i]) {
+      assert.equal(d.type, 'BufferGeometry', `object ${i} is drawn from its mesh`);
+      assert.ok(d.indices >= 48 * 3, `object ${i} has its triangles (${d.indices / 3})`);
+    } else {
+      assert.equal(d.type, 'BoxGeometry', `object ${i} is a box`);
+    }
+  });
+  assert.notDeepEqual(await pixelAtObject(page, meshShaped.indexOf(true)), [233, 237, 242],
+                      'a mesh is drawn');
+  await page.screenshot({ path: path.join(artifacts, 'viewer-meshes.png') });
+  page.checkProblems();
+  await page.close();
+}
+
 // A page that fails the test on a script error or on any request that leaves the allowed origin.
 async function openPage(browser, url, allowed) {
   const page = await browser.newPage();
@@ -226,6 +253,8 @@ async function main() {
     console.log('error page: ok');
     await checkColorsAndShapes(browser, dir);
     console.log('colours and shapes: ok');
+    await checkMeshes(browser, dir);
+    console.log('meshes: ok');
   } finally {
     await browser.close();
     rmSync(dir, { recursive: true, force: true });

@@ -3,6 +3,8 @@
 // real server on a free loopback port.
 #include <gtest/gtest.h>
 #include <nlohmann/json.hpp>
+#include <filesystem>
+#include <fstream>
 #include <thread>
 
 #include "output/scene_json.h"
@@ -54,6 +56,37 @@ TEST(ViewRecord, HasNoWorkspaceWhenTheProgramBindsNone) {
   auto program = Compile("class C:\n    width: 1\nC at Vector3D(0, 0, 0)\n");
   const json record = json::parse(FormatViewRecord(sampling::SampleScene(*program, 0, 0)));
   EXPECT_TRUE(record["workspace"].is_null());
+}
+
+// A mesh shape's triangles travel with the record, keyed by the path the line records, both
+// for a sampled scene and for a line read back from a scenes file; a mesh whose file is gone
+// is left out (the page draws its box).
+TEST(ViewRecord, CarriesTheMeshesOfMeshShapes) {
+  const std::filesystem::path dir = std::filesystem::temp_directory_path() / "prs_viewer_mesh_test";
+  std::filesystem::create_directories(dir);
+  {
+    std::ofstream obj(dir / "tri.obj");  // a tetrahedron
+    obj << "v 0 0 0\nv 0.1 0 0\nv 0 0.1 0\nv 0 0 0.1\nf 1 3 2\nf 1 2 4\nf 1 4 3\nf 2 3 4\n";
+  }
+  lang::DiagnosticEngine diagnostics;
+  lang::CompileOptions options;
+  auto program = lang::CompileText((dir / "test.prs").string(),
+                                   "class T:\n    shape: Mesh(\"tri.obj\")\nT at Vector3D(0, 0, 0)\n",
+                                   options, diagnostics);
+  ASSERT_FALSE(diagnostics.has_errors());
+  const sampling::SampledScene scene = sampling::SampleScene(*program, 0, 0);
+  const json record = json::parse(FormatViewRecord(scene));
+  const std::string path = json::parse(record["line"].get<std::string>())["objects"][0]
+                               ["properties"]["shape"]["path"];
+  ASSERT_TRUE(record["meshes"].contains(path)) << record["meshes"].dump();
+  EXPECT_EQ(record["meshes"][path]["vertices"].size(), 12u);
+  EXPECT_EQ(record["meshes"][path]["triangles"].size(), 12u);
+  const json of_line = json::parse(FormatViewRecordOfLine(record["line"].get<std::string>()));
+  EXPECT_EQ(of_line["meshes"], record["meshes"]);
+  std::filesystem::remove_all(dir);
+  std::string line = record["line"];
+  line.replace(line.find(path), path.size(), path + ".gone.obj");
+  EXPECT_TRUE(json::parse(FormatViewRecordOfLine(line))["meshes"].empty());
 }
 
 TEST(Page, ServedPageLinksTheScriptAndStartsWhereAsked) {

@@ -145,7 +145,7 @@ class Viewer {
 
   showScene(record) {
     this.scene = JSON.parse(record.line);
-    this.view.show(this.scene, record.workspace);
+    this.view.show(this.scene, record.workspace, record.meshes);
     const list = $('objects');
     list.replaceChildren(...this.scene.objects.map((o, i) => makeObjectItem(o, i, (j) => this.select(j))));
     $('scene-json').textContent = record.line;

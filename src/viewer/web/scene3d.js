@@ -1,6 +1,7 @@
 // The 3D view: a prs-scene/1 object drawn with three.js in the world frame (+z up): boxes
-// (or cylinders where `shape_type` says so) centred on each object's position and turned by
-// its quaternion, a floor, the workspace outline, orbit controls and click selection.
+// (or cylinders where `shape_type` says so, or the mesh of a mesh shape when the record carries
+// it) centred on each object's position and turned by its quaternion, a floor, the workspace
+// outline, orbit controls and click selection.
 import * as THREE from 'three';
 import { OrbitControls } from 'three/examples/jsm/controls/OrbitControls.js';
 import { ConvexGeometry } from 'three/examples/jsm/geometries/ConvexGeometry.js';
@@ -10,7 +11,21 @@ const kMinSize = 0.004;  // metres: points (zero-sized objects) stay visible
 const kSelectColor = 0xe8a400;
 const kClickSlop = 5;  // pixels a pointer may move between down and up and still be a click
 
-function makeObjectGeometry(object) {
+// A mesh shape's triangles ({vertices, triangles} flat arrays, the mesh's frame at scale 1),
+// scaled as the object's shape says.
+function makeMeshGeometry(data, scale) {
+  const geometry = new THREE.BufferGeometry();
+  geometry.setAttribute('position', new THREE.Float32BufferAttribute(data.vertices.map((x) => x * scale), 3));
+  geometry.setIndex(data.triangles);
+  geometry.computeVertexNormals();
+  return geometry;
+}
+
+function makeObjectGeometry(object, meshes) {
+  const shape = object.properties && object.properties.shape;
+  if (shape && typeof shape === 'object' && meshes && meshes[shape.path]) {
+    return makeMeshGeometry(meshes[shape.path], shape.scale);
+  }
   const [w, l, h] = object.dimensions.map((d) => Math.max(d, kMinSize));
   if (object.properties && object.properties.shape_type === 'cylinder') {
     // three's cylinders stand along +y; ours stand along the object's +z.
@@ -41,10 +56,10 @@ function makeViewCone(object) {
   return cone;
 }
 
-function makeObjectMesh(object, index) {
+function makeObjectMesh(object, index, meshes) {
   const material = new THREE.MeshStandardMaterial({
-    color: objectColor(object), roughness: 0.65, metalness: 0.05 });
-  const mesh = new THREE.Mesh(makeObjectGeometry(object), material);
+    color: objectColor(object), roughness: 0.65, metalness: 0.05, side: THREE.DoubleSide });
+  const mesh = new THREE.Mesh(makeObjectGeometry(object, meshes), material);
   const [x, y, z] = object.position;
   const [qw, qx, qy, qz] = object.orientation.quaternion;
   mesh.position.set(x, y, z);
@@ -131,13 +146,14 @@ export class SceneView {
 
   render() { this.renderer.render(this.scene, this.camera); }
 
-  /// Replaces the drawn scene. `workspace` is {dimension, vertices} or null.
-  show(sceneJson, workspace) {
+  /// Replaces the drawn scene. `workspace` is {dimension, vertices} or null; `meshes` maps a
+  /// mesh shape's recorded path to its triangles (absent: such objects are drawn as boxes).
+  show(sceneJson, workspace, meshes) {
     for (const group of [this.objects, this.stage]) {
       disposeTree(group);
       group.clear();
     }
-    this.meshes = sceneJson.objects.map(makeObjectMesh);
+    this.meshes = sceneJson.objects.map((object, i) => makeObjectMesh(object, i, meshes));
     this.objects.add(...this.meshes);
     this.selected = -1;
     const bounds = this.calcBounds(workspace);
