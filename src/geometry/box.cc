@@ -20,11 +20,11 @@ void ThrowBadBox(const char* where, const OrientedBox& box) {
   throw std::invalid_argument(msg.str());
 }
 
-}  // namespace
-
-double CalcBoxSeparation(const OrientedBox& a, const OrientedBox& b) {
-  if ((a.half_extents.array() < 0).any()) ThrowBadBox("CalcBoxSeparation", a);
-  if ((b.half_extents.array() < 0).any()) ThrowBadBox("CalcBoxSeparation", b);
+// The separation of CalcBoxSeparation, except that it returns as soon as some axis separates
+// the boxes by more than `stop` (a lower bound of the separation, which is then above `stop`):
+// DoBoxesOverlap needs only to know whether the separation is above -tolerance, and most pairs
+// of a scene are far apart, which A's face axes already show.
+double CalcBoxSeparationUpTo(const OrientedBox& a, const OrientedBox& b, double stop) {
   // Work in A's frame: R = rotation of B in A, t = B's centre in A.
   const Eigen::Matrix3d R = a.R_WB.transpose() * b.R_WB;
   const Eigen::Vector3d t = a.R_WB.transpose() * (b.p_center - a.p_center);
@@ -35,9 +35,11 @@ double CalcBoxSeparation(const OrientedBox& a, const OrientedBox& b) {
   // A's face axes.
   const Eigen::Vector3d gap_a = t.cwiseAbs() - ha - abs_R * hb;
   double best = gap_a.maxCoeff();
+  if (best > stop) return best;
   // B's face axes.
   const Eigen::Vector3d gap_b = (R.transpose() * t).cwiseAbs() - abs_R.transpose() * ha - hb;
   best = std::max(best, gap_b.maxCoeff());
+  if (best > stop) return best;
   // Edge-edge axes e_i × b_j (in A's frame).
   for (int i = 0; i < 3; ++i) {
     const int i1 = (i + 1) % 3, i2 = (i + 2) % 3;
@@ -51,9 +53,18 @@ double CalcBoxSeparation(const OrientedBox& a, const OrientedBox& b) {
       const double ra = ha[i1] * abs_R(i2, j) + ha[i2] * abs_R(i1, j);
       const double rb = hb[j1] * abs_R(i, j2) + hb[j2] * abs_R(i, j1);
       best = std::max(best, (dist - ra - rb) / std::sqrt(len2));
+      if (best > stop) return best;
     }
   }
   return best;
+}
+
+}  // namespace
+
+double CalcBoxSeparation(const OrientedBox& a, const OrientedBox& b) {
+  if ((a.half_extents.array() < 0).any()) ThrowBadBox("CalcBoxSeparation", a);
+  if ((b.half_extents.array() < 0).any()) ThrowBadBox("CalcBoxSeparation", b);
+  return CalcBoxSeparationUpTo(a, b, HUGE_VAL);
 }
 
 bool DoBoxesOverlap(const OrientedBox& a, const OrientedBox& b, double tolerance) {
@@ -62,7 +73,9 @@ bool DoBoxesOverlap(const OrientedBox& a, const OrientedBox& b, double tolerance
     msg << "DoBoxesOverlap: tolerance must be >= 0, got " << tolerance;
     throw std::invalid_argument(msg.str());
   }
-  return CalcBoxSeparation(a, b) <= -tolerance;
+  if ((a.half_extents.array() < 0).any()) ThrowBadBox("DoBoxesOverlap", a);
+  if ((b.half_extents.array() < 0).any()) ThrowBadBox("DoBoxesOverlap", b);
+  return CalcBoxSeparationUpTo(a, b, -tolerance) <= -tolerance;
 }
 
 std::array<Eigen::Vector3d, 8> CalcBoxCorners(const OrientedBox& box) {
