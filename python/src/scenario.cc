@@ -216,7 +216,6 @@ std::shared_ptr<lang::CompiledProgram> CompileProgram(const std::string& path,
   lang::CompileOptions options;
   options.search_path = load.search_path;
   options.param_overrides = load.params;
-  options.cache_dir = lang::DefaultCacheDir();
   lang::DiagnosticEngine diagnostics;
   std::shared_ptr<lang::CompiledProgram> program =
       text ? lang::CompileText(path, *text, options, diagnostics)

@@ -229,7 +229,6 @@ std::unique_ptr<lang::CompiledProgram> CompileCampaign(const std::string& dir,
   lang::CompileOptions options;
   options.search_path = {dir + "/spec"};
   options.param_overrides = spec.params;
-  options.cache_dir = lang::DefaultCacheDir();
   auto program = lang::CompileFile(dir + "/" + spec.main_file, options, diagnostics);
   if (diagnostics.has_errors()) {
     std::string text;

@@ -156,7 +156,6 @@ std::unique_ptr<lang::CompiledProgram> CompileScenario(const ScenarioArgs& args)
   options.search_path = args.include_dirs;
   for (std::string& dir : SplitPrsPath()) options.search_path.push_back(std::move(dir));
   options.param_overrides = SplitParams(args.params);
-  options.cache_dir = lang::DefaultCacheDir();
   options.on_note = [](const std::string& note) { PrintNote(note); };
   lang::DiagnosticEngine diagnostics;
   auto program = lang::CompileFile(args.file, options, diagnostics);

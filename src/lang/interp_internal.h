@@ -200,9 +200,10 @@ class Interpreter {
   PositionConstraint EvalOnConstraint(const Specifier& s, int index, bool completely,
                                       ObjectPlan::OpenTurn open);
   PositionConstraint EvalSideConstraint(const Specifier& s, int index, ObjectPlan::OpenTurn open);
-  // The centres for which the object's box lies in `box_region`: exact when the orientation
-  // is known, else a superset for every turn it may take (the exact test is kept in c).
-  geometry::ConvexRegion ErodeByOwnBox(const geometry::ConvexRegion& box_region, int index,
+  // The centres for which the object (its box, or its mesh's hull) lies in `box_region`:
+  // exact when the orientation is known, else eroded by the round core every turn it may take
+  // keeps inside (a superset; the exact test is kept in c).
+  geometry::ConvexRegion ErodeByOwnShapeOrCore(const geometry::ConvexRegion& box_region, int index,
                                        ObjectPlan::OpenTurn open, PositionConstraint& c);
   RoundCore CalcRoundCore(int index, ObjectPlan::OpenTurn open);
   // --- robot- and camera-aware specifiers (placement_views.cc) ---

@@ -261,7 +261,7 @@ PositionConstraint Interpreter::EvalOnConstraint(const Specifier& s, int index, 
   }
   if (completely) {
     if (options_.mode == SamplingMode::kNaive) c.naive_domain = c.region;
-    c.region = ErodeByOwnBox(c.region, index, open, c);
+    c.region = ErodeByOwnShapeOrCore(c.region, index, open, c);
   }
   return c;
 }
@@ -300,7 +300,7 @@ PositionConstraint Interpreter::EvalSideConstraint(const Specifier& s, int index
   return c;
 }
 
-ConvexRegion Interpreter::ErodeByOwnBox(const ConvexRegion& box_region, int index,
+ConvexRegion Interpreter::ErodeByOwnShapeOrCore(const ConvexRegion& box_region, int index,
                                         ObjectPlan::OpenTurn open, PositionConstraint& c) {
   if (open == ObjectPlan::OpenTurn::kNone) return ErodeByOwnShape(box_region, index);
   c.box_region = box_region;

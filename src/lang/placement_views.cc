@@ -154,7 +154,7 @@ PositionConstraint Interpreter::EvalViewConstraint(const Specifier& s, int index
       break;
     case SpecifierKind::kCompletelyInViewOf:
     case SpecifierKind::kCompletelyVisibleFrom:
-      c.region = ErodeByOwnBox(frustum, index, open, c);
+      c.region = ErodeByOwnShapeOrCore(frustum, index, open, c);
       break;
     case SpecifierKind::kNotInViewOf:
       c.pieces = geometry::RegionUnion(std::make_shared<const geometry::PieceSet>(

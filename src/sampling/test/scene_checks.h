@@ -32,7 +32,6 @@ inline std::unique_ptr<lang::CompiledProgram> CompileOrDie(const std::string& te
                                                     const std::string& path = "examples/test.prs") {
   lang::DiagnosticEngine diagnostics;
   lang::CompileOptions options;
-  options.cache_dir = lang::DefaultCacheDir();  // the build's test cache under ctest
   auto program = lang::CompileText(RepoPath(path), text, options, diagnostics);
   std::string rendered;
   for (const auto& d : diagnostics.diagnostics()) rendered += d.message + "\n";
@@ -46,7 +45,6 @@ inline std::unique_ptr<lang::CompiledProgram> CompileExample(const std::string& 
   lang::DiagnosticEngine diagnostics;
   lang::CompileOptions options;
   options.search_path = {RepoPath("examples")};
-  options.cache_dir = lang::DefaultCacheDir();
   auto program = lang::CompileFile(RepoPath("examples/" + name), options, diagnostics);
   EXPECT_FALSE(diagnostics.has_errors()) << name;
   return program;
