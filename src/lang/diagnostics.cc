@@ -315,7 +315,8 @@ const std::vector<DiagnosticKind>& DiagnosticCatalogue() {
       {"bad-camera", "interpreter", "a camera whose intrinsics are out of range (fov, aspect, near/far)"},
       {"bad-mesh", "interpreter",
        "a mesh shape that cannot be used: unknown format, unreadable or empty file, a path that "
-       "is not a string literal, or an orientation that depends on its position"},
+       "is not a string literal, or an orientation that depends on its position where no "
+       "footprint is common to every turn"},
       {"conflicting-size", "interpreter", "width, length or height given for a mesh-shaped object "
                                           "and different from its mesh's size"},
       {"mesh-warning", "resolver", "(warning) a mesh that is not closed, has zero-area triangles "

@@ -206,6 +206,9 @@ class Interpreter {
   geometry::ConvexRegion ErodeByOwnShapeOrCore(const geometry::ConvexRegion& box_region, int index,
                                        ObjectPlan::OpenTurn open, PositionConstraint& c);
   RoundCore CalcRoundCore(int index, ObjectPlan::OpenTurn open);
+  RoundCore CalcMeshRoundCore(int index, ObjectPlan::OpenTurn open);
+  // The rotation of the object's known pitch and roll (yaw 0), while its yaw is open.
+  Eigen::Matrix3d CalcKnownTilt(int index);
   // --- robot- and camera-aware specifiers (placement_views.cc) ---
   PositionConstraint EvalReachableConstraint(const Specifier& s);
   PositionConstraint EvalViewConstraint(const Specifier& s, int index, ObjectPlan::OpenTurn open);

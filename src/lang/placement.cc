@@ -310,28 +310,65 @@ ConvexRegion Interpreter::ErodeByOwnShapeOrCore(const ConvexRegion& box_region, 
 
 RoundCore Interpreter::CalcRoundCore(int index, ObjectPlan::OpenTurn open) {
   const SceneObject& o = scene_.objects[index];
-  if (o.mesh) {
-    // A disk inside the bounding box need not be inside the mesh's hull, so the superset
-    // would not hold: not supported yet, and said so rather than sampled wrongly.
-    Fail(o.span, "bad-mesh",
-         "this " + o.cls->name + " has a mesh shape and an orientation that depends on its "
-         "position (e.g. 'facing toward') while a specifier needs its footprint; give the "
-         "orientation directly (facing V, with yaw θ) or drop 'completely'/the side specifier");
-  }
+  if (o.mesh) return CalcMeshRoundCore(index, open);
   const Vector3d half_extents = o.dimensions / 2;
   if (open == ObjectPlan::OpenTurn::kAny) return {Vector3d::Zero(), half_extents.minCoeff()};
   // Pitch and roll are known: the largest horizontal disk about the centre inside the tilted
   // box is inside it for every turn about z.
-  auto angle = [&](const char* name) {
-    return o.cls->FindDefault(name) ? ToNumber(GetProperty(index, name, {}), o.span, name) : 0.0;
-  };
-  const Matrix3d R_tilt = geometry::CalcRotationFromYawPitchRoll(0, angle("pitch"), angle("roll"));
+  const Matrix3d R_tilt = CalcKnownTilt(index);
   double radius = std::numeric_limits<double>::infinity();
   for (int i = 0; i < 3; ++i) {
     const double horizontal = R_tilt.col(i).head<2>().norm();
     if (horizontal > 1e-12) radius = std::min(radius, half_extents[i] / horizontal);
   }
   return {Vector3d::UnitZ(), radius};
+}
+
+Matrix3d Interpreter::CalcKnownTilt(int index) {
+  const SceneObject& o = scene_.objects[index];
+  auto angle = [&](const char* name) {
+    return o.cls->FindDefault(name) ? ToNumber(GetProperty(index, name, {}), o.span, name) : 0.0;
+  };
+  return geometry::CalcRotationFromYawPitchRoll(0, angle("pitch"), angle("roll"));
+}
+
+// A mesh's round core: the largest ball (any turn) or horizontal disk (turns about z) about
+// the centre of its bounding box inside its convex hull, from the hull's facet planes: a plane
+// n · p <= d leaves a disk of radius d / |n's horizontal part| (a ball of radius d) inside it.
+// The mesh holds the hull's points only in the sense that matters here: a convex region holds
+// the mesh iff it holds the hull, so the core inside the hull gives a valid superset.
+RoundCore Interpreter::CalcMeshRoundCore(int index, ObjectPlan::OpenTurn open) {
+  const SceneObject& o = scene_.objects[index];
+  const std::vector<shapes::HullPlane>* planes = nullptr;
+  std::vector<shapes::HullPlane> computed;
+  if (options_.cache) {
+    auto it = options_.cache->hull_planes.find(o.mesh.get());
+    if (it == options_.cache->hull_planes.end())
+      it = options_.cache->hull_planes.emplace(o.mesh.get(), shapes::CalcHullPlanes(o.mesh->hull_O)).first;
+    planes = &it->second;
+  } else {
+    computed = shapes::CalcHullPlanes(o.mesh->hull_O);
+    planes = &computed;
+  }
+  const bool any_turn = open == ObjectPlan::OpenTurn::kAny;
+  const Matrix3d R_tilt = any_turn ? Matrix3d::Identity() : CalcKnownTilt(index);
+  double radius = planes->empty() ? 0 : std::numeric_limits<double>::infinity();
+  for (const shapes::HullPlane& plane : *planes) {
+    const double d = plane.offset_m * o.mesh_scale;
+    const double across = any_turn ? 1.0 : (R_tilt * plane.normal_O).head<2>().norm();
+    if (across > 1e-12) radius = std::min(radius, d / across);
+  }
+  if (!(radius > 0)) {
+    // The centre is on or outside the hull (or the mesh is flat): no footprint is common to
+    // every turn, so no superset to draw from; said rather than sampled wrongly.
+    Fail(o.span, "bad-mesh",
+         "this " + o.cls->name + "'s orientation depends on its position (e.g. 'facing "
+         "toward') while a specifier needs its footprint, and its mesh's convex hull leaves no "
+         "room about the centre of its bounding box (a flat mesh, or a centre outside the "
+         "hull), so no footprint is common to every turn; give the orientation directly "
+         "(facing V, with yaw θ) or drop 'completely'/the side specifier");
+  }
+  return {any_turn ? Vector3d(Vector3d::Zero()) : Vector3d(Vector3d::UnitZ()), radius};
 }
 
 void Interpreter::CheckOpenTurn(int index) {
@@ -343,8 +380,8 @@ void Interpreter::CheckOpenTurn(int index) {
                                    : RejectionKind::kContainment;
     const bool naive = options_.mode == SamplingMode::kNaive;
     if (naive && !KeepsNaiveViolation(kind)) continue;  // another violation already counts
-    if (geometry::ErodeByBox(check.box_region, box.R_WB, box.half_extents)
-            .Contains(box.p_center, 1e-9)) {
+    // The exact test now that the orientation is known (a mesh's by its hull).
+    if (ErodeByOwnShape(check.box_region, index).Contains(box.p_center, 1e-9)) {
       continue;
     }
     std::string culprit = scene_.objects[index].DisplayName(index) + " " +

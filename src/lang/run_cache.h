@@ -14,6 +14,7 @@
 #include "lang/lang.h"
 #include "lang/value.h"
 #include "shapes/collide.h"
+#include "shapes/hull_planes.h"
 
 namespace prs::lang {
 
@@ -36,6 +37,8 @@ class RunCache {
   /// Collision shapes of meshes (by mesh and scale) and of boxes that meet a mesh (by size).
   std::map<std::tuple<const shapes::MeshShape*, double, double, double>,
            std::shared_ptr<const shapes::Collider>> colliders;
+  /// The facet planes of meshes' convex hulls at scale 1, for footprints of open turns.
+  std::unordered_map<const shapes::MeshShape*, std::vector<shapes::HullPlane>> hull_planes;
 };
 
 }  // namespace prs::lang

@@ -28,6 +28,7 @@ struct Renderer::State {
   int buffer_width = 0, buffer_height = 0;
   int floor_texture = -1;
   std::vector<internal::MeshKey> meshes;  // the render model's, in asset order
+  std::vector<std::shared_ptr<const shapes::MeshShape>> mesh_owners;  // keep `meshes` alive
 
   State() {
     mjv_defaultScene(&scene);
@@ -86,8 +87,6 @@ struct Renderer::State {
     }
     return drawings;
   }
-
-  std::vector<std::shared_ptr<const shapes::MeshShape>> mesh_owners;  // keep `meshes` alive
 
   // MuJoCo 2.2 sizes its offscreen buffer once, from the model, when the context is made.
   void EnsureBuffer(int width, int height) {

@@ -88,6 +88,23 @@ void CollectTriangles(const aiScene& scene, VertexPool& pool, TriangleMesh& mesh
   }
 }
 
+// Each mesh's primitive types as its faces have them (1 index: point, 2: line, 3: triangle,
+// more: polygon). A face without indices (assimp's PLY reader makes one from a face line it
+// misreads) is refused: assimp's triangulation counts it as a triangle and asserts.
+void CorrectPrimitiveTypes(aiScene& scene) {
+  for (unsigned m = 0; m < scene.mNumMeshes; ++m) {
+    aiMesh& mesh = *scene.mMeshes[m];
+    unsigned types = 0;
+    for (unsigned f = 0; f < mesh.mNumFaces; ++f) {
+      const unsigned n = mesh.mFaces[f].mNumIndices;
+      if (n == 0) throw MeshError("has a face without vertices; check that the file is complete");
+      types |= n == 1 ? aiPrimitiveType_POINT : n == 2 ? aiPrimitiveType_LINE
+               : n == 3 ? aiPrimitiveType_TRIANGLE : aiPrimitiveType_POLYGON;
+    }
+    mesh.mPrimitiveTypes = types;
+  }
+}
+
 int CountOpenEdges(const TriangleMesh& mesh) {
   std::map<std::pair<int, int>, int> uses;
   for (const Eigen::Vector3i& t : mesh.triangles) {
@@ -125,13 +142,20 @@ std::shared_ptr<const MeshShape> LoadMeshShape(std::string_view bytes, const std
     if (auto problem = internal::CheckPlyHeader(bytes)) throw MeshError(*problem);
   }
   Assimp::Importer importer;
-  // Lines and points are dropped; node transforms are applied (glTF scenes place their meshes).
+  // Read first with assimp's own validation only; then check the faces and make every mesh's
+  // primitive types agree with them, which assimp's importers do not always do and its
+  // triangulation asserts (aborts the process) on (found by prs_mesh_fuzz); then the
+  // post-processing: triangulate, join vertices, apply node transforms (glTF scenes place
+  // their meshes), drop lines and points.
   importer.SetPropertyInteger(AI_CONFIG_PP_SBP_REMOVE, aiPrimitiveType_POINT | aiPrimitiveType_LINE);
-  const aiScene* scene = importer.ReadFileFromMemory(
-      bytes.data(), bytes.size(),
-      aiProcess_Triangulate | aiProcess_JoinIdenticalVertices | aiProcess_PreTransformVertices |
-          aiProcess_SortByPType,
-      extension.c_str());
+  const aiScene* scene = importer.ReadFileFromMemory(bytes.data(), bytes.size(),
+                                                     aiProcess_ValidateDataStructure,
+                                                     extension.c_str());
+  if (scene) {
+    CorrectPrimitiveTypes(*const_cast<aiScene*>(scene));  // the importer's own scene
+    scene = importer.ApplyPostProcessing(aiProcess_Triangulate | aiProcess_JoinIdenticalVertices |
+                                         aiProcess_PreTransformVertices | aiProcess_SortByPType);
+  }
   if (!scene || (scene->mFlags & AI_SCENE_FLAGS_INCOMPLETE) || !scene->mRootNode) {
     throw MeshError("cannot be read as a ." + extension + " mesh; check that it is a complete " +
                     "file of that format (" + SupportedMeshFormats() + ")");

@@ -36,8 +36,18 @@ std::string AtLine(int line, const std::string& what) {
 }  // namespace
 
 std::optional<std::string> CheckPlyHeader(std::string_view bytes) {
-  const size_t end = bytes.find("end_header");
-  if (end == std::string_view::npos || end > kMaxHeaderBytes)
+  // The line "end_header" itself (a word ending in it, "verteend_header", is not the end:
+  // assimp then reads on looking for it, forever).
+  size_t end = std::string_view::npos;
+  for (size_t at = bytes.find("\nend_header"); at != std::string_view::npos && at < kMaxHeaderBytes;
+       at = bytes.find("\nend_header", at + 1)) {
+    const size_t after = at + 11;
+    if (after == bytes.size() || bytes[after] == '\n' || bytes[after] == '\r') {
+      end = at + 1;
+      break;
+    }
+  }
+  if (end == std::string_view::npos)
     return "has no PLY header (no end_header line in its first 64 KB)";
   const std::string_view header = bytes.substr(0, end);
   const size_t body_bytes = bytes.size() - end;

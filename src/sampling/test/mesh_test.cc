@@ -2,7 +2,8 @@
 // table lies on the tabletop (checked on the whole mesh, not the hull the sampler erodes by),
 // and the mug on the shelf stands on one of its boards, wholly on it, on both boards as often;
 // no two meshes overlap by an independent FCL test; and mesh placement accepts scenes whose
-// bounding boxes overlap (which box shapes would reject). Sizes come from the mesh, scaled.
+// bounding boxes overlap (which box shapes would reject). Sizes come from the mesh, scaled. A
+// mesh whose orientation depends on its position is placed wholly on the table.
 #include <gtest/gtest.h>
 
 #include <map>
@@ -85,6 +86,49 @@ TEST(MeshSceneTest, MeshesLieOnTheTableAndNeverOverlap) {
   // Both boards have the same area: each holds the mug about half the time (n = 1000, the
   // binomial's standard deviation is 16; 6 of them either side).
   EXPECT_NEAR(on_board[0], 500, 95) << on_board[1];
+}
+
+// A mug whose orientation depends on its position ('facing toward') `completely on` the table:
+// its position is drawn from the top eroded by the round core of its hull (a superset for every
+// turn), then checked exactly once it has turned. Every vertex ends on the tabletop, the mug
+// faces the point, and the superset is tight enough that few scenes are rejected.
+TEST(MeshSceneTest, AMugFacingTowardAPointStaysWhollyOnTheTable) {
+  auto program = CompileOrDie(R"(
+from model import *
+class Mug:
+    shape: Mesh("assets/mug.obj")
+t = Table on V3D(0, 0, 0)
+m = Mug completely on t, facing toward V3D(0.3, 2, 1)
+)");
+  ASSERT_NE(program, nullptr);
+  SceneSampler sampler(*program);
+  int attempts = 0;
+  double min_yaw = INFINITY, max_yaw = -INFINITY;
+  for (int i = 0; i < 500; ++i) {
+    const SampledScene s = sampler.Sample(5, i);
+    attempts += s.attempts;
+    const SceneObject& table = Find(s.scene, "t");
+    const SceneObject& mug = Find(s.scene, "m");
+    const double top = table.p_WO.z() + table.dimensions.z() / 2;
+    const Eigen::Isometry3d X = PoseOf(mug);
+    double lowest = INFINITY;
+    for (const Vector3d& p_O : mug.mesh->mesh.vertices_O) {
+      const Vector3d p = X * p_O;
+      ASSERT_LE(std::abs(p.x()), 0.9 + kTol) << "scene " << i;
+      ASSERT_LE(std::abs(p.y()), 0.4 + kTol) << "scene " << i;
+      lowest = std::min(lowest, p.z());
+    }
+    EXPECT_NEAR(lowest, top, 1e-9) << "scene " << i;
+    // Its forward axis points at the target, seen from above.
+    const Vector3d forward = X.linear().col(1);
+    const Vector3d to_target = Vector3d(0.3, 2, 1) - mug.p_WO;
+    EXPECT_GT(forward.head<2>().normalized().dot(to_target.head<2>().normalized()), 1 - 1e-9);
+    const double yaw = std::atan2(forward.y(), forward.x());
+    min_yaw = std::min(min_yaw, yaw);
+    max_yaw = std::max(max_yaw, yaw);
+  }
+  EXPECT_GT(max_yaw - min_yaw, 0.5);  // the turn really depends on the position
+  EXPECT_LT(attempts, 2 * 500);       // the round core is not a loose superset
 }
 
 TEST(MeshSceneTest, SizeComesFromTheScaledMesh) {

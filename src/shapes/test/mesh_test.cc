@@ -124,6 +124,17 @@ TEST(MeshTest, MalformedPlyHeadersAreRefusedBeforeReading) {
   EXPECT_NE(with("property list uchar int", "property list uchar").find("line 8"),
             std::string::npos);
   EXPECT_NE(with("format ascii 1.0\n", "").find("without a format line"), std::string::npos);
+  // The fuzzer's abort: a face line assimp misreads ("~3 ...") as a face without vertices.
+  std::string misread = good_header + "0 0 0\n1 0 0\n0 1 0\n3 0 1 2\n";
+  misread.replace(misread.find("element vertex 3"), 16, "element vertex 4");
+  misread.replace(misread.find("element face 1"), 14, "element face 4");
+  misread += "~3 0 3 2\n3 1 2 3\n";
+  misread.insert(misread.find("3 0 1 2"), "0 0 1\n3 0 2 1\n");
+  EXPECT_NE(LoadError(misread, "t.ply").find("face without vertices"), std::string::npos)
+      << LoadError(misread, "t.ply");
+  // The fuzzer's second hang: "end_header" glued to the last property's name.
+  EXPECT_NE(with("vertex_indices\nend_header", "verteend_header").find("no end_header line"),
+            std::string::npos);
 }
 
 // The hull's vertices have the same support function as the whole set, in every direction.
