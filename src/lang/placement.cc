@@ -335,8 +335,8 @@ Matrix3d Interpreter::CalcKnownTilt(int index) {
 // A mesh's round core: the largest ball (any turn) or horizontal disk (turns about z) about
 // the centre of its bounding box inside its convex hull, from the hull's facet planes: a plane
 // n · p <= d leaves a disk of radius d / |n's horizontal part| (a ball of radius d) inside it.
-// The mesh holds the hull's points only in the sense that matters here: a convex region holds
-// the mesh iff it holds the hull, so the core inside the hull gives a valid superset.
+// The core need only lie inside the hull, not the mesh: a convex region holds the mesh iff it
+// holds the hull, so eroding by the core still gives a superset of the valid centres.
 RoundCore Interpreter::CalcMeshRoundCore(int index, ObjectPlan::OpenTurn open) {
   const SceneObject& o = scene_.objects[index];
   const std::vector<shapes::HullPlane>* planes = nullptr;
