@@ -8,6 +8,7 @@
 
 #include <cmath>
 #include <map>
+#include <optional>
 #include <utility>
 
 #include "export/writers.h"
@@ -21,32 +22,41 @@ std::string FormatQuaternion(const Eigen::Quaterniond& R) {  // MuJoCo's order: 
          FormatNumber(R.z());
 }
 
-// The mesh assets of a scene: one set per distinct mesh and scale, shared by its bodies.
+// The mesh assets of a scene: one set per distinct mesh and scale, shared by its bodies. The
+// convex pieces (HACD, about a second per mesh) are made only for meshes a colliding body uses.
 class MeshAssets {
  public:
   struct Entry {
     std::string name;  // "mesh3"; its convex pieces are "mesh3_piece0", "mesh3_piece1", ...
-    size_t piece_count = 0;
+    std::optional<size_t> piece_count;  // set once the pieces are written
   };
 
-  const Entry& Of(const Body& body) {
+  // The body's mesh asset, and its pieces when `with_pieces`.
+  const Entry& Of(const Body& body, bool with_pieces) {
     const auto key = std::make_pair(body.mesh.get(), body.mesh_scale);
-    if (auto it = entries_.find(key); it != entries_.end()) return it->second;
-    Entry entry{"mesh" + std::to_string(entries_.size())};
-    text_ += "    " + FormatMjcfMesh(entry.name, body.mesh->mesh.vertices_O,
-                                     &body.mesh->mesh.triangles, body.mesh_scale) + "\n";
-    const auto pieces = shapes::CalcConvexPieces(*body.mesh);
-    for (size_t k = 0; k < pieces->size(); ++k) {
-      text_ += "    " + FormatMjcfMesh(entry.name + "_piece" + std::to_string(k),
-                                       (*pieces)[k].points_O, nullptr, body.mesh_scale) + "\n";
+    auto it = entries_.find(key);
+    if (it == entries_.end()) {
+      it = entries_.emplace(key, Entry{"mesh" + std::to_string(entries_.size())}).first;
+      Append(FormatMjcfMesh(it->second.name, body.mesh->mesh.vertices_O,
+                            &body.mesh->mesh.triangles, body.mesh_scale));
     }
-    entry.piece_count = pieces->size();
-    return entries_.emplace(key, std::move(entry)).first->second;
+    Entry& entry = it->second;
+    if (with_pieces && !entry.piece_count) {
+      const auto pieces = shapes::CalcConvexPieces(*body.mesh);
+      for (size_t k = 0; k < pieces->size(); ++k) {
+        Append(FormatMjcfMesh(entry.name + "_piece" + std::to_string(k), (*pieces)[k].points_O,
+                              nullptr, body.mesh_scale));
+      }
+      entry.piece_count = pieces->size();
+    }
+    return entry;
   }
   // The <mesh> elements, one per line.
   const std::string& text() const { return text_; }
 
  private:
+  void Append(const std::string& element) { text_ += "    " + element + "\n"; }
+
   std::map<std::pair<const shapes::MeshShape*, double>, Entry> entries_;
   std::string text_;
 };
@@ -68,14 +78,14 @@ bool IsCamera(const Body& body) { return body.class_name == "Camera"; }
 // A mesh body: its triangles drawn (group 1, no contacts), its convex pieces colliding (group 3,
 // hidden in MuJoCo's default view).
 void AppendMeshGeoms(const Body& body, MeshAssets& assets, std::string& out) {
-  const MeshAssets::Entry& mesh = assets.Of(body);
+  const MeshAssets::Entry& mesh = assets.Of(body, body.collides);
   const std::string rgba = FormatRgba(body.color);
   fmt::format_to(std::back_inserter(out),
                  "      <geom name=\"{}\" type=\"mesh\" mesh=\"{}\" rgba=\"{}\" group=\"1\" "
                  "contype=\"0\" conaffinity=\"0\"/>\n",
                  body.name, mesh.name, rgba);
   if (!body.collides) return;
-  for (size_t k = 0; k < mesh.piece_count; ++k) {
+  for (size_t k = 0; k < *mesh.piece_count; ++k) {
     fmt::format_to(std::back_inserter(out),
                    "      <geom name=\"{}_piece{}\" type=\"mesh\" mesh=\"{}_piece{}\" rgba=\"{}\" "
                    "group=\"3\"/>\n",
