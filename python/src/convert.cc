@@ -62,6 +62,11 @@ py::object ToPython(const lang::Value& value) {
     dict["scale"] = m->scale;
     return dict;
   }
+  if (const auto* p = std::get_if<lang::PrimitiveRef>(&data)) {
+    py::dict dict;
+    dict["primitive"] = shapes::PrimitiveName(p->kind);
+    return dict;
+  }
   return py::str(lang::Repr(value));
 }
 

@@ -72,6 +72,16 @@ def test_a_mesh_shape_reads_as_in_the_json_line():
     assert scene["mug"].dimensions.tolist() == pytest.approx([0.11, 0.08, 0.1], abs=1e-12)
 
 
+def test_a_built_in_shape_reads_as_in_the_json_line():
+    scenario = prs.load(EXAMPLES / "pantry_shapes.prs")
+    scene = scenario.sample(seed=2, index=0)
+    assert scene["ball"].properties["shape"] == {"primitive": "sphere"}
+    assert scene["bottle"].properties["shape"] == {"primitive": "capsule"}
+    assert scene["tin"].properties["shape"] == {"primitive": "cylinder"}
+    objects = {o["name"]: o for o in json.loads(scene.to_json())["objects"]}
+    assert objects["tin"]["properties"]["shape"] == {"primitive": "cylinder"}
+
+
 def test_batch_helpers_stack_one_object_over_scenes(table_cube):
     scenes = table_cube.sample_batch(50, seed=2)
     xyz = prs.positions(scenes, "Cube#5")

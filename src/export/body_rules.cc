@@ -6,6 +6,7 @@
 
 #include <algorithm>
 #include <cctype>
+#include <cmath>
 
 namespace prs::exporting::internal {
 namespace {
@@ -22,11 +23,29 @@ std::string Lowercase(std::string text) {
   return text;
 }
 
+bool NearlyEqual(double x, double y) { return std::fabs(x - y) <= 1e-9 * std::max(x, y); }
+
+// A built-in shape is written natively when the formats have it: round across (width =
+// length), and for a sphere as tall as wide, for a capsule at least as tall (round caps).
+// Otherwise (an elliptic cylinder, an ellipsoid, a squat capsule) as its polytope.
+Shape ClassifyPrimitive(shapes::Primitive kind, const Eigen::Vector3d& size) {
+  const bool round = NearlyEqual(size.x(), size.y());
+  switch (kind) {
+    case shapes::Primitive::kCylinder: return round ? Shape::kCylinder : Shape::kMesh;
+    case shapes::Primitive::kSphere: return round && NearlyEqual(size.x(), size.z()) ? Shape::kSphere : Shape::kMesh;
+    case shapes::Primitive::kCapsule: return round && size.z() >= size.x() ? Shape::kCapsule : Shape::kMesh;
+  }
+  return Shape::kMesh;
+}
+
 Shape ReadShape(const ObjectFacts& facts, const std::string& label,
                 std::vector<std::string>& warnings) {
   if (facts.dimensions.minCoeff() <= 0) return Shape::kNone;
   if (const lang::Value* shape = Find(facts.properties, "shape"); shape && shape->Is<lang::MeshRef>()) {
     return Shape::kMesh;
+  }
+  if (const lang::Value* shape = Find(facts.properties, "shape"); shape && shape->Is<lang::PrimitiveRef>()) {
+    return ClassifyPrimitive(shape->As<lang::PrimitiveRef>().kind, facts.dimensions);
   }
   const lang::Value* value = Find(facts.properties, "shape_type");
   if (value == nullptr) return Shape::kBox;
@@ -83,13 +102,26 @@ double ReadFovy(const ObjectFacts& facts, const std::string& label, std::vector<
   return value->As<double>();
 }
 
-// Principal moments of a solid box or cylinder about its centre, in its own axes.
+// Principal moments of a solid box, cylinder, sphere or capsule about its centre, in its own
+// axes (a mesh: its box's).
 Eigen::Vector3d CalcInertiaDiag(Shape shape, const Eigen::Vector3d& size, double mass_kg) {
   const double w = size.x(), l = size.y(), h = size.z();
   if (shape == Shape::kCylinder) {
     const double r = std::min(w, l) / 2;
     const double across = mass_kg * (3 * r * r + h * h) / 12;
     return {across, across, mass_kg * r * r / 2};
+  }
+  if (shape == Shape::kSphere) return Eigen::Vector3d::Constant(mass_kg * w * w / 10);  // 2/5 m r²
+  if (shape == Shape::kCapsule) {
+    // A cylinder of length s between two half balls, mass shared by volume; each half ball's
+    // centroid is 3r/8 from the flat face (parallel axes).
+    const double r = w / 2, s = h - w;
+    const double v_cylinder = s, v_ball = 4.0 / 3 * r;  // both over π r²
+    const double m_c = mass_kg * v_cylinder / (v_cylinder + v_ball), m_b = mass_kg - m_c;
+    const double axial = m_c * r * r / 2 + m_b * 2 * r * r / 5;
+    const double across = m_c * (3 * r * r + s * s) / 12 +
+                          m_b * (2 * r * r / 5 + s * s / 4 + 3 * s * r / 8);
+    return {across, across, axial};
   }
   return {mass_kg * (l * l + h * h) / 12, mass_kg * (w * w + h * h) / 12,
           mass_kg * (w * w + l * l) / 12};
@@ -117,7 +149,11 @@ Body MakeBody(const ObjectFacts& facts, NameTable& names, std::vector<std::strin
   body.R_WO = facts.R_WO.normalized();
   body.size = facts.dimensions;
   body.shape = ReadShape(facts, label, warnings);
-  if (body.shape == Shape::kMesh) {
+  if (const lang::Value* shape = Find(facts.properties, "shape");
+      shape && shape->Is<lang::PrimitiveRef>() && body.shape != Shape::kNone) {
+    body.primitive = shape->As<lang::PrimitiveRef>().kind;
+    body.mesh = shapes::MakePrimitiveShape(*body.primitive, body.size);
+  } else if (body.shape == Shape::kMesh) {
     const auto& mesh = Find(facts.properties, "shape")->As<lang::MeshRef>();
     body.mesh = mesh.mesh;
     body.mesh_scale = mesh.scale;

@@ -34,6 +34,8 @@ std::string ListFormatNames();
 enum class Shape {
   kBox,       // width x length x height, centred on the body's origin
   kCylinder,  // axis along local z; radius min(width, length) / 2; length height
+  kSphere,    // radius width / 2 (width = length = height)
+  kCapsule,   // axis along local z; radius width / 2 (width = length <= height); total height
   kMesh,      // Body::mesh at Body::mesh_scale, its bounding box centred on the body's origin
   kNone,      // a point (some dimension is zero): a frame without geometry
 };
@@ -47,7 +49,11 @@ struct Body {
   Eigen::Vector3d size = Eigen::Vector3d::Zero();  // width (x), length (y), height (z), metres
   Shape shape = Shape::kBox;
   /// For Shape::kMesh: the mesh (shapes/mesh.h) and the factor on its file's coordinates.
+  /// A built-in shape (`Cylinder()`, ...) has `primitive` set and `mesh` its polytope
+  /// (shapes/primitive.h, scale 1, no file); its `shape` is the native one when it is round
+  /// (kCylinder, kSphere, kCapsule), else kMesh (an elliptic cylinder, an ellipsoid).
   std::shared_ptr<const shapes::MeshShape> mesh;
+  std::optional<shapes::Primitive> primitive;
   double mesh_scale = 1;
   Rgba color;
   double mass_kg = 0;  // > 0: a free body; 0: static (fixed in the world)
@@ -60,6 +66,9 @@ struct Body {
   bool is_free() const { return mass_kg > 0; }
   /// A cylinder's radius: it fits the box the sampler placed.
   double cylinder_radius() const { return std::min(size.x(), size.y()) / 2; }
+  /// Whether `mesh` names a file (false for a built-in shape's polytope): URDF and SDF can
+  /// only refer to meshes by file, so they write a file-less mesh as its box.
+  bool has_mesh_file() const { return mesh && !mesh->path.empty(); }
 };
 
 /// A scene ready to be written; `title` names it inside the file ("seed 1 index 0").

@@ -134,7 +134,9 @@ MeshData MakeTriangleMesh(const shapes::MeshShape& shape, double scale) {
 }
 
 int AddMesh(tinygltf::Model& model, const Body& body) {
-  const MeshData data = body.shape == Shape::kMesh ? MakeTriangleMesh(*body.mesh, body.mesh_scale)
+  // A sphere or capsule: its polytope (shapes/primitive.h), like any mesh.
+  const bool polytope = body.shape == Shape::kSphere || body.shape == Shape::kCapsule;
+  const MeshData data = body.shape == Shape::kMesh || polytope ? MakeTriangleMesh(*body.mesh, body.mesh_scale)
                         : body.shape == Shape::kCylinder
                             ? MakeCylinderMesh(body.cylinder_radius(), body.size.z())
                             : MakeBoxMesh(body.size);

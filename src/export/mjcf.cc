@@ -61,8 +61,14 @@ class MeshAssets {
   std::string text_;
 };
 
-// MuJoCo sizes are half-extents; a cylinder's are radius and half-height.
+// MuJoCo sizes are half-extents; a cylinder's are radius and half-height, a capsule's radius
+// and the half-length of its straight part.
 std::string FormatGeomType(const Body& body) {
+  if (body.shape == Shape::kSphere) return fmt::format("type=\"sphere\" size=\"{}\"", FormatNumber(body.size.x() / 2));
+  if (body.shape == Shape::kCapsule) {
+    return fmt::format("type=\"capsule\" size=\"{} {}\"", FormatNumber(body.size.x() / 2),
+                       FormatNumber((body.size.z() - body.size.x()) / 2));
+  }
   if (body.shape == Shape::kCylinder) {
     const double radius = body.cylinder_radius();
     return fmt::format("type=\"cylinder\" size=\"{} {}\"", FormatNumber(radius),

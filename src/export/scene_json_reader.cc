@@ -114,6 +114,16 @@ Body ReadBody(const json& object, int index, internal::NameTable& names,
     if (key == "allowCollisions") facts.allow_collisions = value.Is<bool>() && value.As<bool>();
     if (key != "shape") continue;
     const json& shape = object.at("properties").at("shape");
+    if (shape.is_object() && shape.size() == 1 && shape.contains("primitive") && shape["primitive"].is_string()) {
+      if (auto kind = shapes::ParsePrimitive(shape["primitive"].get<std::string>())) {
+        value = lang::PrimitiveRef{*kind};
+      } else {
+        warnings.push_back(fmt::format("{}: its shape {} is not a built-in shape (\"cylinder\", "
+                                       "\"sphere\", \"capsule\"); exported as its box",
+                                       where, shape.dump()));
+      }
+      continue;
+    }
     const bool is_mesh = shape.is_object() && shape.contains("mesh") && shape["mesh"].is_string() &&
                          shape.contains("path") && shape["path"].is_string() &&
                          shape.contains("scale") && shape["scale"].is_number() &&

@@ -9,8 +9,18 @@
 namespace prs::exporting::internal {
 namespace {
 
+// A capsule's <length> is its straight part's; a built-in shape without a native form (an
+// elliptic cylinder or capsule, an ellipsoid) is written as its box: SDF refers to meshes by
+// file only.
 std::string FormatGeometry(const Body& body) {
-  if (body.shape == Shape::kMesh) {
+  if (body.shape == Shape::kSphere) {
+    return fmt::format("<sphere><radius>{}</radius></sphere>", FormatNumber(body.size.x() / 2));
+  }
+  if (body.shape == Shape::kCapsule) {
+    return fmt::format("<capsule><radius>{}</radius><length>{}</length></capsule>",
+                       FormatNumber(body.size.x() / 2), FormatNumber(body.size.z() - body.size.x()));
+  }
+  if (body.shape == Shape::kMesh && body.has_mesh_file()) {
     const double s = body.mesh_scale;
     return fmt::format("<mesh><uri>{}</uri><scale>{}</scale></mesh>", FormatMeshUri(body),
                        FormatVector(Eigen::Vector3d(s, s, s)));
@@ -28,7 +38,7 @@ void AppendShape(const Body& body, std::string& out) {
   const std::string rgba = FormatRgba(body.color);
   // A mesh file keeps its own frame: moved so that its bounding box is centred on the link.
   const std::string pose =
-      body.shape == Shape::kMesh
+      body.shape == Shape::kMesh && body.has_mesh_file()
           ? fmt::format("<pose>{} 0 0 0</pose>", FormatVector(CalcMeshFileOffset(body)))
           : "";
   if (body.collides) {

@@ -8,13 +8,18 @@
 namespace prs::exporting::internal {
 namespace {
 
+// URDF has no capsule: a round capsule is written as the cylinder around it (its radius and
+// whole height), which holds it; a built-in shape without a native form as its box.
 std::string FormatGeometry(const Body& body) {
-  if (body.shape == Shape::kMesh) {
+  if (body.shape == Shape::kSphere) {
+    return fmt::format("<sphere radius=\"{}\"/>", FormatNumber(body.size.x() / 2));
+  }
+  if (body.shape == Shape::kMesh && body.has_mesh_file()) {
     const double s = body.mesh_scale;
     return fmt::format("<mesh filename=\"{}\" scale=\"{}\"/>", FormatMeshUri(body),
                        FormatVector(Eigen::Vector3d(s, s, s)));
   }
-  if (body.shape == Shape::kCylinder) {
+  if (body.shape == Shape::kCylinder || body.shape == Shape::kCapsule) {
     return fmt::format("<cylinder radius=\"{}\" length=\"{}\"/>",
                        FormatNumber(body.cylinder_radius()), FormatNumber(body.size.z()));
   }
@@ -27,7 +32,7 @@ void AppendLink(const Body& body, std::string& out) {
     const std::string geometry = FormatGeometry(body);
     // A mesh file keeps its own frame: moved so that its bounding box is centred on the link.
     const std::string origin =
-        body.shape == Shape::kMesh
+        body.shape == Shape::kMesh && body.has_mesh_file()
             ? fmt::format("<origin xyz=\"{}\"/>", FormatVector(CalcMeshFileOffset(body)))
             : "";
     fmt::format_to(std::back_inserter(out),

@@ -43,13 +43,25 @@ void AppendMeshData(const Body& body, std::string& out) {
   if (body.collides) out += "            uniform token physics:approximation = \"convexDecomposition\"\n";
 }
 
-// The shape prim; a Cube of size 1 scaled to the box, a Cylinder along local z, or a Mesh.
+// The shape prim; a Cube of size 1 scaled to the box, a Cylinder or Capsule along local z, a
+// Sphere, or a Mesh (a file's, or a built-in shape's polytope when it is not round).
 void AppendShape(const Body& body, std::string& out) {
   const bool mesh = body.shape == Shape::kMesh;
   const std::string schemas = FormatSchemas(false, body.collides, "        ", mesh);
   if (mesh) {
     fmt::format_to(std::back_inserter(out), "\n        def Mesh \"shape\"{}\n        {{\n", schemas);
     AppendMeshData(body, out);
+  } else if (body.shape == Shape::kSphere) {
+    fmt::format_to(std::back_inserter(out),
+                   "\n        def Sphere \"shape\"{}\n        {{\n            double radius = {}\n",
+                   schemas, FormatNumber(body.size.x() / 2));
+  } else if (body.shape == Shape::kCapsule) {
+    // USD's capsule height is its straight part's.
+    fmt::format_to(std::back_inserter(out),
+                   "\n        def Capsule \"shape\"{}\n        {{\n"
+                   "            uniform token axis = \"Z\"\n"
+                   "            double height = {}\n            double radius = {}\n",
+                   schemas, FormatNumber(body.size.z() - body.size.x()), FormatNumber(body.size.x() / 2));
   } else if (body.shape == Shape::kCylinder) {
     fmt::format_to(std::back_inserter(out),
                    "\n        def Cylinder \"shape\"{}\n        {{\n"

@@ -16,7 +16,7 @@ enum class Builtin : int {
   // Python-like helpers.
   kRangeFn, kLen, kAbs, kMin, kMax, kRound, kInt, kFloat, kStr, kBool, kList, kSum,
   // Object shapes.
-  kMesh,
+  kMesh, kCylinder, kCapsule,  // and kSphere with no arguments
   // The math module.
   kSin, kCos, kTan, kAsin, kAcos, kAtan, kAtan2, kSqrt, kExp, kLog, kRadians, kDegrees,
   kFloor, kCeil, kFabs, kHypot,

@@ -19,7 +19,8 @@ Value Interpreter::EvalCall(const CallExpr& call, SourceSpan span) {
   if (const auto* builtin = std::get_if<BuiltinRef>(&callee.data)) {
     const BuiltinInfo& info = GetBuiltinInfo(builtin->id);
     const int n = static_cast<int>(args.size());
-    if (n < info.min_args || (info.max_args >= 0 && n > info.max_args)) {
+    if (n < info.min_args || (info.max_args >= 0 && n > info.max_args) ||
+        (builtin->id == Builtin::kSphere && n == 1)) {
       Fail(span, "wrong-argument-count",
            std::string(info.name) + " was given " + std::to_string(n) + " arguments; call it as " +
                info.signature);
@@ -85,6 +86,7 @@ Value Interpreter::CallFunction(const FunctionRef& fn, const CallExpr& call,
 Value Interpreter::CallBuiltin(Builtin id, const std::vector<Value>& args,
                                const std::vector<SourceSpan>& spans, SourceSpan span) {
   if (id >= Builtin::kSin) return CallMath(id, args, spans, span);
+  if (id == Builtin::kSphere && args.empty()) return PrimitiveRef{shapes::Primitive::kSphere};
   if (id >= Builtin::kCuboid && id <= Builtin::kEmpty) return CallRegion(id, args, spans, span);
   if (id < Builtin::kCuboid) return CallDistribution(id, args, spans, span);
   auto number = [&](size_t i, const char* what) { return ToNumber(args[i], spans[i], what); };
@@ -133,6 +135,8 @@ Value Interpreter::CallBuiltin(Builtin id, const std::vector<Value>& args,
       return total;
     }
     case Builtin::kMesh: return CallMesh(args, spans, span);
+    case Builtin::kCylinder: return PrimitiveRef{shapes::Primitive::kCylinder};
+    case Builtin::kCapsule: return PrimitiveRef{shapes::Primitive::kCapsule};
     default: break;
   }
   Fail(span, "internal", "built-in not implemented");

@@ -250,9 +250,11 @@ void NameChecker::CheckArity(const BuiltinInfo& info, const CallExpr& call, Sour
     }
   }
   const int n = static_cast<int>(call.args.size());
-  if (n >= info.min_args && (info.max_args < 0 || n <= info.max_args)) return;
+  const bool one_sphere_argument = info.id == Builtin::kSphere && n == 1;  // 0: shape, 2: region
+  if (n >= info.min_args && (info.max_args < 0 || n <= info.max_args) && !one_sphere_argument) return;
   std::string expected = std::to_string(info.min_args);
   if (info.max_args < 0) expected = "at least " + expected;
+  else if (one_sphere_argument) expected = "0 or 2";
   else if (info.max_args != info.min_args) expected += " to " + std::to_string(info.max_args);
   diagnostics_.Error("wrong-argument-count", span,
                      std::string(info.name) + " takes " + expected + " argument" +

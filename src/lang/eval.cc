@@ -223,6 +223,7 @@ bool Interpreter::ValuesEqual(const Value& a, const Value& b) {
   if (const auto* m = std::get_if<MeshRef>(&a.data)) {
     return m->mesh == b.As<MeshRef>().mesh && m->scale == b.As<MeshRef>().scale;
   }
+  if (const auto* p = std::get_if<PrimitiveRef>(&a.data)) return p->kind == b.As<PrimitiveRef>().kind;
   return false;
 }
 

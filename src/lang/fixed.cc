@@ -253,6 +253,8 @@ Info FixedAnalysis::AnalyzeNode(const CallExpr& node, const Expr&, int m, bool) 
     if (envs_[m].count(name->name)) return kRandom;  // a user function, class or rebinding
     const BuiltinInfo* builtin = FindGlobalBuiltin(name->name);
     if (!builtin || !IsDeterministicBuiltin(builtin->id)) return kRandom;
+    // Sphere() with no arguments is a shape, not a region.
+    if (builtin->id == Builtin::kSphere && node.args.empty()) return {fixed, Kind::kOther};
     return {fixed, BuiltinResultKind(builtin->id)};
   }
   if (const auto* attribute = std::get_if<AttributeExpr>(&node.callee->node)) {

@@ -173,6 +173,11 @@ class Interpreter {
   // A size step of an object whose shape is a mesh: the mesh's scaled bounding box; a size
   // given explicitly must agree with it (a located error otherwise).
   Value SizeFromShape(const PlanStep& step, int index, Value value, SourceSpan value_span);
+  // A built-in shape's polytope at the object's size, into SceneObject::mesh once width,
+  // length and height are all set (RunCache::primitives keeps those of repeated sizes).
+  void SetPrimitiveMesh(int index);
+  // Whether caches keyed by the object's mesh may hold it (not a one-scene primitive).
+  bool IsShapeCached(const SceneObject& o) const;
   // Object `index`'s convex hull vertices in its frame, scaled; empty for a box.
   std::vector<Eigen::Vector3d> ScaledHull(int index) const;
   // The centres at which the object (its hull, or its box) lies in `region`, exactly.

@@ -66,7 +66,7 @@ void Interpreter::RunPlanStep(const PlanStep& step, int index, SourceSpan span) 
       Value value = with ? Eval(*step.specifier->target) : EvalDefault(*step.default_value, index);
       const SourceSpan value_span = with ? step.specifier->target->span
                                          : step.default_value->expr ? step.default_value->expr->span : span;
-      if (scene_.objects[index].mesh &&
+      if (scene_.objects[index].mesh && !scene_.objects[index].primitive &&
           (step.property == "width" || step.property == "length" || step.property == "height")) {
         value = SizeFromShape(step, index, std::move(value), value_span);
       }
@@ -161,16 +161,21 @@ void Interpreter::SetProperty(int index, const std::string& name, Value value,
   }
   if (key == "shape"sv) {
     const MeshRef* mesh = std::get_if<MeshRef>(&value.data);
+    const PrimitiveRef* primitive = std::get_if<PrimitiveRef>(&value.data);
     o.mesh = mesh ? mesh->mesh : nullptr;
     o.mesh_scale = mesh ? mesh->scale : 1;
+    o.primitive = primitive ? std::optional(primitive->kind) : std::nullopt;
   }
+  bool replaced = false;
   for (auto& [existing, v] : o.properties) {
     if (std::string_view(existing) == key) {
       v = std::move(value);
-      return;
+      replaced = true;
+      break;
     }
   }
-  o.properties.emplace_back(name, std::move(value));
+  if (!replaced) o.properties.emplace_back(name, std::move(value));
+  if (o.primitive && (numeric || key == "shape"sv)) SetPrimitiveMesh(index);
 }
 
 Value Interpreter::GetProperty(int index, const std::string& name, SourceSpan span) {

@@ -341,7 +341,7 @@ RoundCore Interpreter::CalcMeshRoundCore(int index, ObjectPlan::OpenTurn open) {
   const SceneObject& o = scene_.objects[index];
   const std::vector<shapes::HullPlane>* planes = nullptr;
   std::vector<shapes::HullPlane> computed;
-  if (options_.cache) {
+  if (IsShapeCached(o)) {
     auto it = options_.cache->hull_planes.find(o.mesh.get());
     if (it == options_.cache->hull_planes.end())
       it = options_.cache->hull_planes.emplace(o.mesh.get(), shapes::CalcHullPlanes(o.mesh->hull_O)).first;

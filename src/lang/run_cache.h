@@ -39,6 +39,13 @@ class RunCache {
            std::shared_ptr<const shapes::Collider>> colliders;
   /// The facet planes of meshes' convex hulls at scale 1, for footprints of open turns.
   std::unordered_map<const shapes::MeshShape*, std::vector<shapes::HullPlane>> hull_planes;
+  /// Built-in shapes' polytopes by kind and size, at most kMaxPrimitives of them: sizes drawn
+  /// anew in every scene would otherwise grow it without end. A polytope not kept here is made
+  /// for its scene only and is never a key of `colliders` or `hull_planes` (its address may be
+  /// reused once it is gone).
+  static constexpr size_t kMaxPrimitives = 256;
+  std::map<std::tuple<shapes::Primitive, double, double, double>,
+           std::shared_ptr<const shapes::MeshShape>> primitives;
 };
 
 }  // namespace prs::lang

@@ -26,8 +26,12 @@ struct SceneObject {
   bool allow_collisions = false;
   /// Its shape when the `shape` property is a mesh (`Mesh("mug.obj")`), else null (a box). The
   /// mesh is `mesh_scale` times the file's size; `dimensions` is its scaled bounding box.
+  /// A built-in shape (`Cylinder()`, ...) sets `primitive`, and `mesh` to its polytope at the
+  /// object's size (shapes/primitive.h, scale 1) once width, length and height are known; a
+  /// primitive with a zero size stays a (flat) box, which holds it.
   std::shared_ptr<const shapes::MeshShape> mesh;
   double mesh_scale = 1;
+  std::optional<shapes::Primitive> primitive;
   bool fixed = false;  // the same in every scene (ObjectPlan::object_fixed)
   /// Nonzero for an object a sampler keeps and copies unchanged into later scenes (RunCache::
   /// fixed_objects): objects with the same id are equal in every field, so what is made from

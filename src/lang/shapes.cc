@@ -58,6 +58,37 @@ Value Interpreter::SizeFromShape(const PlanStep& step, int index, Value value, S
   return value;
 }
 
+void Interpreter::SetPrimitiveMesh(int index) {
+  SceneObject& o = scene_.objects[index];
+  o.mesh = nullptr;
+  o.mesh_scale = 1;
+  if (!o.cls->has_box) return;
+  for (const char* size : {"width", "length", "height"}) {
+    if (!o.FindProperty(size)) return;  // the plan sets sizes after the shape: not yet
+  }
+  if (!(o.dimensions.minCoeff() > 0)) return;  // flat: its box, which holds it
+  const auto key = std::make_tuple(*o.primitive, o.dimensions.x(), o.dimensions.y(), o.dimensions.z());
+  if (options_.cache) {
+    auto it = options_.cache->primitives.find(key);
+    if (it != options_.cache->primitives.end()) {
+      o.mesh = it->second;
+      return;
+    }
+  }
+  o.mesh = shapes::MakePrimitiveShape(*o.primitive, o.dimensions);
+  if (options_.cache && options_.cache->primitives.size() < RunCache::kMaxPrimitives) {
+    options_.cache->primitives.emplace(key, o.mesh);
+  }
+}
+
+bool Interpreter::IsShapeCached(const SceneObject& o) const {
+  if (!options_.cache) return false;
+  if (!o.primitive || !o.mesh) return true;
+  auto it = options_.cache->primitives.find(
+      std::make_tuple(*o.primitive, o.dimensions.x(), o.dimensions.y(), o.dimensions.z()));
+  return it != options_.cache->primitives.end() && it->second == o.mesh;
+}
+
 std::vector<Vector3d> Interpreter::ScaledHull(int index) const {
   const SceneObject& o = scene_.objects[index];
   std::vector<Vector3d> hull;
@@ -103,14 +134,15 @@ std::shared_ptr<const shapes::Collider> Interpreter::ColliderOf(int index) {
   const auto key = o.mesh ? std::make_tuple(o.mesh.get(), o.mesh_scale, 0.0, 0.0)
                           : std::make_tuple(static_cast<const shapes::MeshShape*>(nullptr),
                                             o.dimensions.x(), o.dimensions.y(), o.dimensions.z());
-  if (options_.cache) {
+  const bool cached = IsShapeCached(o);
+  if (cached) {
     auto it = options_.cache->colliders.find(key);
     if (it != options_.cache->colliders.end()) return it->second;
   }
   std::shared_ptr<const shapes::Collider> collider =
       o.mesh ? shapes::Collider::MakeMesh(*o.mesh, o.mesh_scale, kMeshTouchingM)
              : shapes::Collider::MakeBox(o.dimensions / 2, kMeshTouchingM);
-  if (options_.cache) options_.cache->colliders.emplace(key, collider);
+  if (cached) options_.cache->colliders.emplace(key, collider);
   return collider;
 }
 

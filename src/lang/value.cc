@@ -47,7 +47,7 @@ std::string TypeName(const Value& v) {
   static const char* const kNames[] = {
       "None",   "boolean", "number",   "string",   "vector",   "oriented point",
       "orientation", "object", "region", "class", "function", "built-in function",
-      "module", "method",  "tuple",    "list",     "dict", "mesh"};
+      "module", "method",  "tuple",    "list",     "dict", "mesh", "shape"};
   static_assert(std::variant_size_v<decltype(v.data)> == std::size(kNames));
   return kNames[v.data.index()];
 }
@@ -88,12 +88,18 @@ std::string Repr(const Value& v) {
     return text;
   }
   if (const auto* l = std::get_if<std::shared_ptr<ListData>>(&v.data)) {
-    return "[" + JoinRepr((*l)->elements) + "]";
+    std::string text = "[";  // as above: a named string avoids GCC 12's -Wrestrict
+    text += JoinRepr((*l)->elements) + "]";
+    return text;
   }
   if (const auto* c = std::get_if<const ClassInfo*>(&v.data)) return "class " + (*c)->name;
   if (const auto* r = std::get_if<RegionPtr>(&v.data)) return (*r)->Describe();
   if (const auto* m = std::get_if<MeshRef>(&v.data)) {
     return "Mesh('" + m->mesh->name + "'" + (m->scale == 1 ? "" : ", scale=" + FormatNumber(m->scale)) + ")";
+  }
+  if (const auto* p = std::get_if<PrimitiveRef>(&v.data)) {
+    const char* names[] = {"Cylinder()", "Sphere()", "Capsule()"};
+    return names[static_cast<int>(p->kind)];
   }
   return TypeName(v);
 }

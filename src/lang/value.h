@@ -13,7 +13,7 @@
 #include <vector>
 
 #include "geometry/region.h"
-#include "shapes/mesh.h"
+#include "shapes/primitive.h"
 
 namespace prs::lang {
 
@@ -86,6 +86,10 @@ struct MeshRef {
   std::shared_ptr<const shapes::MeshShape> mesh;
   double scale = 1;
 };
+/// A built-in shape (`Cylinder()`, `Sphere()`, `Capsule()`, spec §10) filling the object's box.
+struct PrimitiveRef {
+  shapes::Primitive kind;
+};
 
 using RegionPtr = std::shared_ptr<const geometry::ConvexRegion>;
 using StringPtr = std::shared_ptr<const std::string>;
@@ -94,7 +98,7 @@ struct Value {
   std::variant<NoneValue, bool, double, StringPtr, Eigen::Vector3d, OrientedPoint, Orientation,
                ObjectRef, RegionPtr, const ClassInfo*, FunctionRef, BuiltinRef, ModuleRef,
                BoundMethod, std::shared_ptr<TupleData>, std::shared_ptr<ListData>,
-               std::shared_ptr<DictData>, MeshRef>
+               std::shared_ptr<DictData>, MeshRef, PrimitiveRef>
       data;
   /// The distribution this value was drawn from (for `resample`); null otherwise.
   std::shared_ptr<const Distribution> origin;

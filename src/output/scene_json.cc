@@ -122,6 +122,13 @@ void AppendValue(const lang::Value& v, Out& out) {
     out += '}';
     return;
   }
+  if (const auto* p = std::get_if<lang::PrimitiveRef>(&data)) {
+    // A built-in shape: its kind; its size is the object's dimensions.
+    out += "{\"primitive\":";
+    AppendString(shapes::PrimitiveName(p->kind), out);
+    out += '}';
+    return;
+  }
   AppendString(lang::Repr(v), out);
 }
 

@@ -36,7 +36,9 @@ struct DepthImage {
 /// Linear RGBA in [0, 1].
 using Rgba = std::array<float, 4>;
 
-enum class ObjectShape { kBox, kCylinder, kPoint, kCamera, kMesh };
+/// kSphere is an ellipsoid filling the box; kCylinder and kCapsule are round (the mean of the
+/// half width and length): MuJoCo draws no elliptic ones.
+enum class ObjectShape { kBox, kCylinder, kSphere, kCapsule, kPoint, kCamera, kMesh };
 
 /// One object as the renderer needs it (converted from a lang::SceneObject or a JSON object).
 struct RenderObject {

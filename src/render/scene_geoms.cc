@@ -119,6 +119,17 @@ void AddObject(mjvScene& out, const RenderObject& o, double edge_width_m,
       return AddSolid(out, mjGEOM_CYLINDER, {radius, o.dimensions.z() / 2, 0}, o.p_WO, R_WO,
                       o.color);
     }
+    case ObjectShape::kSphere:
+      return AddSolid(out, mjGEOM_ELLIPSOID, o.dimensions / 2, o.p_WO, R_WO, o.color);
+    case ObjectShape::kCapsule: {
+      // No taller than wide, a capsule is all caps: the ellipsoid (MuJoCo draws nothing for a
+      // capsule without a straight part).
+      const double radius = (o.dimensions.x() + o.dimensions.y()) / 4;
+      if (o.dimensions.z() / 2 <= radius)
+        return AddSolid(out, mjGEOM_ELLIPSOID, o.dimensions / 2, o.p_WO, R_WO, o.color);
+      return AddSolid(out, mjGEOM_CAPSULE, {radius, o.dimensions.z() / 2 - radius, 0}, o.p_WO,
+                      R_WO, o.color);
+    }
     case ObjectShape::kPoint:
       return AddSolid(out, mjGEOM_SPHERE, Eigen::Vector3d::Constant(0.02), o.p_WO, R_WO, o.color);
     case ObjectShape::kCamera:

@@ -26,6 +26,7 @@ bool ContainsCamera(std::string text) {
 struct DrawProperties {
   std::string model_name;
   std::string shape_type;
+  std::string primitive;  // a built-in shape's name ("cylinder", "sphere", "capsule")
   std::optional<Rgba> color;
   std::string color_text;  // what the scene said, for the unknown-colour note
   std::optional<double> fovy_deg, aspect;  // a camera's view, when given as numbers
@@ -35,6 +36,9 @@ ObjectShape ClassifyShape(const RenderObject& object, const DrawProperties& prop
   if (ContainsCamera(object.class_name) || ContainsCamera(properties.model_name))
     return ObjectShape::kCamera;
   if (object.dimensions.isZero()) return ObjectShape::kPoint;
+  if (properties.primitive == "sphere") return ObjectShape::kSphere;
+  if (properties.primitive == "capsule") return ObjectShape::kCapsule;
+  if (properties.primitive == "cylinder") return ObjectShape::kCylinder;
   if (object.mesh) return ObjectShape::kMesh;
   if (properties.shape_type == "cylinder") return ObjectShape::kCylinder;
   return ObjectShape::kBox;
@@ -68,6 +72,7 @@ std::optional<Rgba> ParseColorValue(const lang::Value& value) {
 
 DrawProperties ReadDrawProperties(const lang::SceneObject& source) {
   DrawProperties properties;
+  if (source.primitive) properties.primitive = shapes::PrimitiveName(*source.primitive);
   for (const auto& [name, value] : source.properties) {
     const bool is_string = value.Is<lang::StringPtr>();
     if (name == "model_name" && is_string) properties.model_name = *value.As<lang::StringPtr>();
@@ -140,6 +145,9 @@ DrawProperties ReadDrawProperties(const nlohmann::json& object) {
     properties.model_name = json["model_name"].get<std::string>();
   if (json.contains("shape_type") && json["shape_type"].is_string())
     properties.shape_type = json["shape_type"].get<std::string>();
+  if (json.contains("shape") && json["shape"].is_object() && json["shape"].contains("primitive") &&
+      json["shape"]["primitive"].is_string())
+    properties.primitive = json["shape"]["primitive"].get<std::string>();
   if (json.contains("fovy_deg") && json["fovy_deg"].is_number())
     properties.fovy_deg = json["fovy_deg"].get<double>();
   if (json.contains("aspect") && json["aspect"].is_number())
@@ -199,8 +207,10 @@ RenderScene MakeRenderScene(const lang::Scene& scene, std::vector<std::string>* 
     object.p_WO = source.p_WO;
     object.R_WO = source.R_WO.normalized();
     object.dimensions = source.dimensions;
-    object.mesh = source.mesh;
-    object.mesh_scale = source.mesh_scale;
+    if (!source.primitive) {  // a built-in shape is drawn by MuJoCo's own geoms, not its polytope
+      object.mesh = source.mesh;
+      object.mesh_scale = source.mesh_scale;
+    }
     ApplyProperties(ReadDrawProperties(source), object, unknown_colors);
     result.objects.push_back(std::move(object));
   }

@@ -133,10 +133,27 @@ void ExpectBodiesAsInScene(const mjModel& m, const ExportScene& scene, const std
       ExpectMeshAsInScene(m, body, geom, label);
       continue;
     }
-    EXPECT_EQ(m.geom_type[geom], body.shape == Shape::kCylinder ? mjGEOM_CYLINDER : mjGEOM_BOX);
-    if (body.shape == Shape::kBox) {
-      EXPECT_TRUE(
-          SameVector(Eigen::Map<const Eigen::Vector3d>(m.geom_size + 3 * geom), body.size / 2));
+    const Eigen::Map<const Eigen::Vector3d> size(m.geom_size + 3 * geom);
+    switch (body.shape) {
+      case Shape::kBox:
+        EXPECT_EQ(m.geom_type[geom], mjGEOM_BOX) << body.name;
+        EXPECT_TRUE(SameVector(size, body.size / 2));
+        break;
+      case Shape::kCylinder:
+        EXPECT_EQ(m.geom_type[geom], mjGEOM_CYLINDER) << body.name;
+        EXPECT_DOUBLE_EQ(size[1], body.size.z() / 2) << body.name;
+        break;
+      case Shape::kSphere:
+        EXPECT_EQ(m.geom_type[geom], mjGEOM_SPHERE) << body.name;
+        EXPECT_DOUBLE_EQ(size[0], body.size.x() / 2) << body.name;
+        break;
+      case Shape::kCapsule:  // radius and the straight part's half-length
+        EXPECT_EQ(m.geom_type[geom], mjGEOM_CAPSULE) << body.name;
+        EXPECT_DOUBLE_EQ(size[0], body.size.x() / 2) << body.name;
+        EXPECT_NEAR(size[1], (body.size.z() - body.size.x()) / 2, 1e-15) << body.name;
+        break;
+      default:
+        ADD_FAILURE() << body.name;
     }
   }
 }

@@ -2,6 +2,8 @@
 // reading a scene back from its JSON line to the same bodies.
 #include <gtest/gtest.h>
 
+#include <algorithm>
+
 #include "export/test/example_scenes.h"
 #include "output/scene_json.h"
 
@@ -72,6 +74,52 @@ TEST(RulesTest, ShapeTypeMassAndColourForms) {
   EXPECT_TRUE(exported.warnings.empty());
 }
 
+// Built-in shapes go out natively when round, else as their polytope (a mesh without a file).
+TEST(RulesTest, BuiltInShapesAreNativeWhenRound) {
+  const lang::Scene& scene = SampleText(
+      "from model import *\n"
+      "class S:\n"
+      "    width: 0.1\n"
+      "    length: 0.1\n"
+      "    height: 0.1\n"
+      "    mass: 1\n"
+      "a = S at V3D(-0.75, 0, 0.2), with shape Cylinder()\n"
+      "b = S at V3D(-0.45, 0, 0.2), with shape Cylinder(), with width 0.2\n"
+      "c = S at V3D(-0.15, 0, 0.2), with shape Sphere()\n"
+      "d = S at V3D(0.15, 0, 0.2), with shape Sphere(), with height 0.05\n"
+      "e = S at V3D(0.45, 0, 0.2), with shape Capsule(), with height 0.3\n"
+      "f = S at V3D(0.75, 0, 0.2), with shape Capsule(), with height 0.05\n");
+  const ExportScene exported = MakeExportScene(scene, "t");
+  ASSERT_EQ(exported.bodies.size(), 6u);
+  const Shape expected[] = {Shape::kCylinder, Shape::kMesh, Shape::kSphere,
+                            Shape::kMesh,     Shape::kCapsule, Shape::kMesh};
+  for (size_t i = 0; i < 6; ++i) {
+    const Body& body = exported.bodies[i];
+    EXPECT_EQ(body.shape, expected[i]) << body.name;
+    ASSERT_TRUE(body.primitive) << body.name;
+    ASSERT_NE(body.mesh, nullptr) << body.name;
+    EXPECT_FALSE(body.has_mesh_file());
+    EXPECT_EQ(body.mesh->extents, body.size) << body.name;
+  }
+  EXPECT_NEAR(exported.bodies[2].inertia_diag.x(), 1 * 0.05 * 0.05 * 2 / 5, 1e-15);
+  // The capsule (radius 0.05, height 0.3) against a sum over a fine grid of its volume.
+  const double r = 0.05, s = 0.2, step = 0.0025;
+  double mass = 0, axial = 0, across = 0;
+  for (double x = -r + step / 2; x < r; x += step) {
+    for (double y = -r + step / 2; y < r; y += step) {
+      for (double z = -0.15 + step / 2; z < 0.15; z += step) {
+        const double t = std::clamp(z, -s / 2, s / 2);
+        if (x * x + y * y + (z - t) * (z - t) > r * r) continue;
+        mass += 1, axial += x * x + y * y, across += y * y + z * z;
+      }
+    }
+  }
+  const Eigen::Vector3d& inertia = exported.bodies[4].inertia_diag;
+  EXPECT_NEAR(inertia.z(), axial / mass, 0.01 * inertia.z());
+  EXPECT_NEAR(inertia.x(), across / mass, 0.01 * inertia.x());
+  EXPECT_EQ(inertia.x(), inertia.y());
+}
+
 TEST(RulesTest, UnreadablePropertiesWarnAndFallBack) {
   const lang::Scene& scene = SampleText(
       "from model import *\n"
@@ -117,6 +165,7 @@ TEST(RulesTest, ReadingTheJsonLineGivesTheSameBodies) {
       EXPECT_TRUE(testing_scenes::SameRotation(a.R_WO, b.R_WO, 1e-15));
       EXPECT_EQ(a.size, b.size);
       EXPECT_EQ(a.shape, b.shape);
+      EXPECT_EQ(a.primitive, b.primitive) << a.name;
       EXPECT_EQ(a.mass_kg, b.mass_kg);
       EXPECT_EQ(a.collides, b.collides);
       EXPECT_EQ(a.color.r, b.color.r);

@@ -18,7 +18,14 @@ using testing_scenes::ExpectMeshFileFits;
 void ExpectGeometry(const sdf::Link& link, const Body& body) {
   ASSERT_EQ(link.VisualCount(), 1u) << body.name;
   const sdf::Geometry& geometry = *link.VisualByIndex(0)->Geom();
-  if (body.shape == Shape::kMesh) {
+  if (body.shape == Shape::kSphere) {
+    ASSERT_EQ(geometry.Type(), sdf::GeometryType::SPHERE) << body.name;
+    EXPECT_DOUBLE_EQ(geometry.SphereShape()->Radius(), body.size.x() / 2);
+  } else if (body.shape == Shape::kCapsule) {
+    ASSERT_EQ(geometry.Type(), sdf::GeometryType::CAPSULE) << body.name;
+    EXPECT_DOUBLE_EQ(geometry.CapsuleShape()->Radius(), body.size.x() / 2);
+    EXPECT_DOUBLE_EQ(geometry.CapsuleShape()->Length(), body.size.z() - body.size.x());
+  } else if (body.shape == Shape::kMesh && body.has_mesh_file()) {
     ASSERT_EQ(geometry.Type(), sdf::GeometryType::MESH) << body.name;
     const auto& s = geometry.MeshShape()->Scale();
     const auto& p = link.VisualByIndex(0)->RawPose().Pos();

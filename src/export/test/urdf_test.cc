@@ -21,7 +21,16 @@ Eigen::Vector3d ToEigen(const urdf::Vector3& v) { return {v.x, v.y, v.z}; }
 void ExpectGeometry(const urdf::Link& link, const Body& body) {
   ASSERT_NE(link.visual, nullptr) << body.name;
   const urdf::GeometrySharedPtr& geometry = link.visual->geometry;
-  if (body.shape == Shape::kMesh) {
+  if (body.shape == Shape::kSphere) {
+    const auto sphere = std::dynamic_pointer_cast<urdf::Sphere>(geometry);
+    ASSERT_NE(sphere, nullptr) << body.name;
+    EXPECT_DOUBLE_EQ(sphere->radius, body.size.x() / 2);
+  } else if (body.shape == Shape::kCapsule) {  // URDF has none: the cylinder around it
+    const auto cylinder = std::dynamic_pointer_cast<urdf::Cylinder>(geometry);
+    ASSERT_NE(cylinder, nullptr) << body.name;
+    EXPECT_DOUBLE_EQ(cylinder->length, body.size.z());
+    EXPECT_DOUBLE_EQ(cylinder->radius, body.size.x() / 2);
+  } else if (body.shape == Shape::kMesh && body.has_mesh_file()) {
     const auto mesh = std::dynamic_pointer_cast<urdf::Mesh>(geometry);
     ASSERT_NE(mesh, nullptr) << body.name;
     const Eigen::Vector3d scale = ToEigen(mesh->scale);

@@ -3,6 +3,7 @@
 // and physics schemas read back to the scene's values.
 #include <gtest/gtest.h>
 
+#include <cmath>
 #include <regex>
 #include <sstream>
 
@@ -61,6 +62,13 @@ std::vector<double> ReadTuple(const std::string& prim, const std::string& attrib
   return numbers;
 }
 
+// The number of `ATTRIBUTE = x` in `prim`; NaN when it has none.
+double ReadScalar(const std::string& prim, const std::string& attribute) {
+  const std::regex pattern(attribute + " = ([-+0-9.eE]+)");
+  std::smatch match;
+  return std::regex_search(prim, match, pattern) ? std::stod(match[1].str()) : std::nan("");
+}
+
 // The numbers of `ATTRIBUTE = [...]` in `prim`, tuples flattened: "[(1, 2, 3), (4, 5, 6)]"
 // gives 1, ..., 6.
 std::vector<double> ReadArray(const std::string& prim, const std::string& attribute) {
@@ -113,6 +121,18 @@ void ExpectPrimAsInScene(const std::string& text, const Body& body, const std::s
   EXPECT_EQ(prim.find("PhysicsRigidBodyAPI") != std::string::npos, body.is_free()) << body.name;
   EXPECT_EQ(prim.find("PhysicsCollisionAPI") != std::string::npos, body.collides) << body.name;
   if (body.shape == Shape::kMesh) ExpectMeshPrim(prim, body);
+  if (body.shape == Shape::kSphere) {
+    const std::string sphere = FindPrim(prim, "Sphere", "shape");
+    ASSERT_FALSE(sphere.empty()) << body.name;
+    EXPECT_NEAR(ReadScalar(sphere, "double radius"), body.size.x() / 2, 1e-15) << body.name;
+  }
+  if (body.shape == Shape::kCapsule) {
+    const std::string capsule = FindPrim(prim, "Capsule", "shape");
+    ASSERT_FALSE(capsule.empty()) << body.name;
+    EXPECT_NE(capsule.find("uniform token axis = \"Z\""), std::string::npos) << body.name;
+    EXPECT_NEAR(ReadScalar(capsule, "double height"), body.size.z() - body.size.x(), 1e-15) << body.name;
+    EXPECT_NEAR(ReadScalar(capsule, "double radius"), body.size.x() / 2, 1e-15) << body.name;
+  }
   if (body.shape == Shape::kBox) {
     const std::string cube = FindPrim(prim, "Cube", "shape");
     const std::vector<double> scale = ReadTuple(cube, "double3 xformOp:scale");

@@ -140,6 +140,27 @@ TEST(RenderTest, AMeshIsDrawnAsItsShapeNotItsBox) {
                           options);
 }
 
+// Built-in shapes in a 0.3 m box seen from the top: the box's corner shows the grey table for a
+// sphere, a cylinder and a capsule (round in plan), the centre their red; a box is red at both.
+TEST(RenderTest, BuiltInShapesAreDrawnRoundNotAsTheirBox) {
+  RenderScene scene = MakeTableScene();
+  RenderObject& ball = scene.objects.emplace_back(
+      MakeBox("ball", {-0.4, -0.2, 0.65}, {0.3, 0.3, 0.3}, {0.9f, 0.05f, 0.05f, 1}));
+  RenderOptions options;
+  options.view = ParseView("top");
+  const CameraPose pose = CalcViewPose(scene, options);
+  const Eigen::Vector2d centre = Project({-0.4, -0.2, 0.8}, pose, options);
+  const Eigen::Vector2d corner = Project({-0.4 + 0.14, -0.2 + 0.14, 0.8}, pose, options);
+  EXPECT_TRUE(IsRed(PixelAt(SharedRenderer().Render(scene, options), int(corner.x()), int(corner.y()))));
+  for (ObjectShape shape : {ObjectShape::kSphere, ObjectShape::kCylinder, ObjectShape::kCapsule}) {
+    ball.shape = shape;
+    const Image image = SharedRenderer().Render(scene, options);
+    const auto at_centre = PixelAt(image, int(centre.x()), int(centre.y()));
+    EXPECT_TRUE(IsRed(at_centre)) << int(shape) << ": " << at_centre[0] << " " << at_centre[1] << " " << at_centre[2];
+    EXPECT_FALSE(IsRed(PixelAt(image, int(corner.x()), int(corner.y())))) << int(shape);
+  }
+}
+
 TEST(RenderTest, RegionOutlinesAreDrawnInTheirColours) {
   // A 0.6 m square outline on the table top, left of the cube: green where its edge is, and
   // the table's grey there without it. A view outline is orange.

@@ -32,6 +32,23 @@ TEST(SceneInputTest, ReadsJsonObjectsShapesAndColours) {
   EXPECT_TRUE(unknown.empty());
 }
 
+// A built-in shape as `prs sample` records it ({"primitive": NAME}) is drawn as that shape,
+// whatever `shape_type` says; an unknown name leaves the box.
+TEST(SceneInputTest, BuiltInShapesAreReadFromTheirRecord) {
+  auto object = [](const std::string& shape) {
+    return R"({"name":"o","class":"O","position":[0,0,0],"orientation":{"quaternion":[1,0,0,0]},)"
+           R"("dimensions":[0.1,0.1,0.2],"properties":{"shape_type":"cylinder","shape":)" + shape + "}}";
+  };
+  const std::string json = R"({"format":"prs-scene/1","objects":[)" + object(R"({"primitive":"sphere"})") +
+                           "," + object(R"({"primitive":"capsule"})") + "," +
+                           object(R"({"primitive":"cone"})") + "]}";
+  const RenderScene scene = ParseRenderSceneJson(json, nullptr);
+  ASSERT_EQ(scene.objects.size(), 3u);
+  EXPECT_EQ(scene.objects[0].shape, ObjectShape::kSphere);
+  EXPECT_EQ(scene.objects[1].shape, ObjectShape::kCapsule);
+  EXPECT_EQ(scene.objects[2].shape, ObjectShape::kCylinder);  // its shape_type
+}
+
 TEST(SceneInputTest, ACamerasFieldOfViewComesFromItsProperties) {
   // From a scenes-file line: fovy_deg and aspect are read, and values no program could
   // compile with keep the defaults.

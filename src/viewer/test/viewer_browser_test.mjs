@@ -219,6 +219,35 @@ async function checkMeshes(browser, dir) {
   await page.close();
 }
 
+// Built-in shapes (examples/pantry_shapes.prs) are drawn as three's own cylinders, spheres and
+// capsules, filling each object's box exactly (an elliptic tin too).
+async function checkPrimitives(browser, dir) {
+  const pantry = path.join(sourceDir, 'examples', 'pantry_shapes.prs');
+  const file = path.join(dir, 'pantry.html');
+  execFileSync(prs, ['view', pantry, '--html', file], { stdio: 'ignore' });
+  const page = await openPage(browser, pathToFileURL(file).href, (url) => url.startsWith('file:'));
+  await waitForScene(page, 0);
+  const drawn = await page.evaluate(() => window.prsViewer.view.meshes.map((m) => {
+    m.geometry.computeBoundingBox();
+    const size = m.geometry.boundingBox.getSize(new m.position.constructor());
+    return { type: m.geometry.type, size: [size.x, size.y, size.z] };
+  }));
+  const scene = JSON.parse(await page.evaluate(() => document.getElementById('scene-json').textContent));
+  const kTypes = { cylinder: 'CylinderGeometry', sphere: 'SphereGeometry', capsule: 'CapsuleGeometry' };
+  const seen = new Set();
+  scene.objects.forEach((o, i) => {
+    const shape = o.properties.shape;
+    if (!shape || !shape.primitive) return;
+    seen.add(shape.primitive);
+    assert.equal(drawn[i].type, kTypes[shape.primitive], `${o.name} is drawn as a ${shape.primitive}`);
+    drawn[i].size.forEach((x, k) => assert.ok(Math.abs(x - o.dimensions[k]) < 1e-6,
+                                              `${o.name} fills its box: ${drawn[i].size} vs ${o.dimensions}`));
+  });
+  assert.deepEqual([...seen].sort(), ['capsule', 'cylinder', 'sphere']);
+  page.checkProblems();
+  await page.close();
+}
+
 // A page that fails the test on a script error or on any request that leaves the allowed origin.
 async function openPage(browser, url, allowed) {
   const page = await browser.newPage();
@@ -254,6 +283,7 @@ async function main() {
     await checkColorsAndShapes(browser, dir);
     console.log('colours and shapes: ok');
     await checkMeshes(browser, dir);
+    await checkPrimitives(browser, dir);
     console.log('meshes: ok');
   } finally {
     await browser.close();

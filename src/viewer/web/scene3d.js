@@ -1,6 +1,6 @@
 // The 3D view: a prs-scene/1 object drawn with three.js in the world frame (+z up): boxes
-// (or cylinders where `shape_type` says so, or the mesh of a mesh shape when the record carries
-// it) centred on each object's position and turned by its quaternion, a floor, the workspace
+// (or cylinders where `shape_type` says so, the built-in shape of `shape: Cylinder()` and
+// the like, or the mesh of a mesh shape when the record carries it) centred on each object's position and turned by its quaternion, a floor, the workspace
 // outline, orbit controls and click selection.
 import * as THREE from 'three';
 import { OrbitControls } from 'three/examples/jsm/controls/OrbitControls.js';
@@ -21,12 +21,34 @@ function makeMeshGeometry(data, scale) {
   return geometry;
 }
 
+// A built-in shape ({"primitive": "cylinder" | "sphere" | "capsule"}) filling the box w x l x h
+// as docs/language.md §5 defines it: axis along +z, semi-axes w/2 and l/2 across; a capsule's
+// caps are as tall as min(w, l, h) / 2. Null for an unknown name (drawn as the box).
+function makePrimitiveGeometry(primitive, w, l, h) {
+  if (primitive === 'sphere') return new THREE.SphereGeometry(0.5, 40, 20).scale(w, l, h);
+  // three's cylinders and capsules stand along +y; ours along the object's +z.
+  if (primitive === 'cylinder') {
+    return new THREE.CylinderGeometry(0.5, 0.5, 1, 48).rotateX(Math.PI / 2).scale(w, l, h);
+  }
+  if (primitive === 'capsule') {
+    // A unit-radius capsule whose straight part becomes h - 2c once scaled by c along its axis.
+    const c = Math.min(w, l, h) / 2;
+    return new THREE.CapsuleGeometry(1, (h - 2 * c) / c, 12, 40).rotateX(Math.PI / 2).scale(w / 2, l / 2, c);
+  }
+  return null;
+}
+
 function makeObjectGeometry(object, meshes) {
   const shape = object.properties && object.properties.shape;
   if (shape && typeof shape === 'object' && meshes && meshes[shape.path]) {
     return makeMeshGeometry(meshes[shape.path], shape.scale);
   }
   const [w, l, h] = object.dimensions.map((d) => Math.max(d, kMinSize));
+  const primitive = shape && typeof shape === 'object' ? shape.primitive : undefined;
+  if (primitive) {
+    const geometry = makePrimitiveGeometry(primitive, w, l, h);
+    if (geometry) return geometry;
+  }
   if (object.properties && object.properties.shape_type === 'cylinder') {
     // three's cylinders stand along +y; ours stand along the object's +z.
     const geometry = new THREE.CylinderGeometry(0.5, 0.5, 1, 40);
