@@ -1,5 +1,6 @@
 // Mesh shapes: one collision test between two placed meshes (FCL, bounding-volume hierarchies),
-// loading a mesh file, and cutting it into convex pieces for MJCF (HACD). Run:
+// loading a mesh file, cutting it into convex pieces for MJCF (HACD), and built-in shapes'
+// polytopes. Run:
 // ./build/bench/shapes_bench
 #include <benchmark/benchmark.h>
 
@@ -10,6 +11,7 @@
 #include "shapes/collide.h"
 #include "shapes/decompose.h"
 #include "shapes/mesh.h"
+#include "shapes/primitive.h"
 
 namespace {
 
@@ -78,6 +80,42 @@ void BM_ConvexPieces(benchmark::State& state, const char* name) {
 BENCHMARK_CAPTURE(BM_ConvexPieces, bowl, "bowl.obj")->Unit(benchmark::kMillisecond)->Iterations(3);
 BENCHMARK_CAPTURE(BM_ConvexPieces, mug, "mug.obj")->Unit(benchmark::kMillisecond)->Iterations(3);
 BENCHMARK_CAPTURE(BM_ConvexPieces, shelf, "shelf.obj")->Unit(benchmark::kMillisecond)->Iterations(3);
+
+// A built-in shape's polytope (shapes/primitive.h): what a scene pays when the shape's size is
+// drawn anew (sizes repeated are cached per thread).
+void BM_MakePrimitive(benchmark::State& state, prs::shapes::Primitive kind) {
+  size_t vertices = 0;
+  int k = 0;
+  for (auto _ : state) {
+    const Eigen::Vector3d size(0.06 + 1e-6 * (++k % 1000), 0.07, 0.12);
+    vertices = prs::shapes::MakePrimitiveShape(kind, size)->mesh.vertices_O.size();
+  }
+  state.counters["vertices"] = static_cast<double>(vertices);
+}
+BENCHMARK_CAPTURE(BM_MakePrimitive, cylinder, prs::shapes::Primitive::kCylinder)->Unit(benchmark::kMicrosecond);
+BENCHMARK_CAPTURE(BM_MakePrimitive, sphere, prs::shapes::Primitive::kSphere)->Unit(benchmark::kMicrosecond);
+BENCHMARK_CAPTURE(BM_MakePrimitive, capsule, prs::shapes::Primitive::kCapsule)->Unit(benchmark::kMicrosecond);
+
+// Two 0.1 m balls (their polytopes) at poses from apart to overlapping: a primitive pair test.
+void BM_SpherePairCollision(benchmark::State& state) {
+  const auto ball = prs::shapes::MakePrimitiveShape(prs::shapes::Primitive::kSphere, {0.1, 0.1, 0.1});
+  const auto collider = prs::shapes::Collider::MakeMesh(*ball, 1, 1e-6);
+  std::vector<Eigen::Isometry3d> poses;
+  for (int k = 0; k < 64; ++k) {
+    Eigen::Isometry3d X = Eigen::Isometry3d::Identity();
+    X.translation() = Eigen::Vector3d(0.05 + 0.001 * k, 0.05 + 0.0005 * k, 0.01 * (k % 3));
+    poses.push_back(X);
+  }
+  int64_t hits = 0;
+  size_t k = 0;
+  for (auto _ : state) {
+    hits += prs::shapes::DoCollidersOverlap(*collider, poses[k++ % poses.size()], *collider,
+                                            Eigen::Isometry3d::Identity());
+  }
+  state.counters["triangles"] = static_cast<double>(ball->mesh.triangles.size());
+  state.counters["overlap_fraction"] = static_cast<double>(hits) / state.iterations();
+}
+BENCHMARK(BM_SpherePairCollision);
 
 }  // namespace
 

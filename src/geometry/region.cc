@@ -407,6 +407,24 @@ bool ConvexRegion::Contains(const Eigen::Vector3d& p_W, double tolerance) const 
   return !c.empty && c.contains_slack > 0 && RawContains(p_W, tolerance + c.contains_slack);
 }
 
+bool ConvexRegion::ContainsAll(const std::vector<Eigen::Vector3d>& points_W, double tolerance) const {
+  if (empty_) return false;
+  bool proven_nonempty = false;  // by a point strictly inside every constraint (see Contains)
+  for (const Eigen::Vector3d& p : points_W) {
+    if (!p.allFinite()) return false;
+    if (!RawContains(p, tolerance)) {
+      if (!RawContains(p, tolerance + 4 * kGeometricTolerance)) return false;
+      // Only a collapsed sliver's slack can keep it: the full test for each point.
+      return std::all_of(points_W.begin(), points_W.end(),
+                         [&](const Eigen::Vector3d& q) { return Contains(q, tolerance); });
+    }
+    proven_nonempty = proven_nonempty || RawContains(p, std::min(tolerance, 0.0) - kGeometricTolerance);
+  }
+  // Every point is inside the raw constraints: Contains() holds for each iff the region is
+  // non-empty.
+  return proven_nonempty || !canon().empty;
+}
+
 bool ConvexRegion::ContainsBox(const OrientedBox& box, double tolerance) const {
   // Contains() proves non-emptiness on its own, mostly without canonicalizing the region
   // (the workspace is checked in every scene, so this matters for speed).

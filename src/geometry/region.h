@@ -100,6 +100,11 @@ class ConvexRegion {
   /// True when p_W satisfies every constraint within `tolerance` (metres; may be negative to
   /// ask for a point at least -tolerance inside). Always false for an empty region.
   bool Contains(const Eigen::Vector3d& p_W, double tolerance = kGeometricTolerance) const;
+  /// Contains() for every point (false for none when the region is empty), canonicalizing the
+  /// region only when some point is not inside its raw constraints, or none strictly (a mesh's
+  /// hull in the workspace, checked in every scene).
+  bool ContainsAll(const std::vector<Eigen::Vector3d>& points_W,
+                   double tolerance = kGeometricTolerance) const;
   /// True when the box lies inside the region within tolerance; for a region of lower
   /// dimension (by its equality constraints) the box's centre must lie in the region and the
   /// box's projection onto the region's affine hull must lie inside it.

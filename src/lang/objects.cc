@@ -175,7 +175,8 @@ void Interpreter::SetProperty(int index, const std::string& name, Value value,
     }
   }
   if (!replaced) o.properties.emplace_back(name, std::move(value));
-  if (o.primitive && (numeric || key == "shape"sv)) SetPrimitiveMesh(index);
+  const bool size = key == "width"sv || key == "length"sv || key == "height"sv;
+  if (o.primitive && (size || key == "shape"sv)) SetPrimitiveMesh(index);
 }
 
 Value Interpreter::GetProperty(int index, const std::string& name, SourceSpan span) {

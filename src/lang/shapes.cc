@@ -111,10 +111,10 @@ bool Interpreter::RegionContainsObject(const geometry::ConvexRegion& region, int
   const SceneObject& o = scene_.objects[index];
   if (!o.mesh) return region.ContainsBox(BoxOf(index), tolerance);
   const Eigen::Matrix3d R = o.R_WO.toRotationMatrix();
-  for (const Vector3d& p : o.mesh->hull_O) {
-    if (!region.Contains(o.p_WO + R * (p * o.mesh_scale), tolerance)) return false;
-  }
-  return true;
+  std::vector<Vector3d> hull_W;
+  hull_W.reserve(o.mesh->hull_O.size());
+  for (const Vector3d& p : o.mesh->hull_O) hull_W.push_back(o.p_WO + R * (p * o.mesh_scale));
+  return region.ContainsAll(hull_W, tolerance);
 }
 
 double Interpreter::CalcObjectSupport(int index, const Vector3d& normal) const {

@@ -1,5 +1,5 @@
-// Built-in shapes as circumscribed polytopes (primitive.h). A cylinder's is a prism; a round
-// shape's (sphere, capsule) is the intersection
+// Built-in shapes as circumscribed polytopes (primitive.h). A cylinder's is a prism; the unit
+// ball's (scaled for a sphere, stretched for a capsule) is the intersection
 // of the true shape's tangent half-spaces n · p <= h(n) for a fixed set of normals n, which
 // include ±x, ±y, ±z so that its bounding box is exactly the object's box. Its vertices come
 // from the polar: the half-spaces are q · p <= 1 with q = n / h(n), and each facet of the
@@ -164,16 +164,33 @@ std::shared_ptr<MeshShape> MakePrimitiveShape(Primitive kind, const Vector3d& si
   if (kind == Primitive::kCylinder) {
     MakeCylinderPrism(axes, shape->mesh);
   } else {
-    std::vector<Vector3d> polar;
-    for (const Vector3d& n : MakeNormals(axes)) polar.push_back(n / CalcPrimitiveSupport(axes, n));
-    std::vector<Vector3d> vertices;
-    for (const HullPlane& plane : CalcHullPlanes(polar)) vertices.push_back(plane.normal_O / plane.offset_m);
-    shape->mesh.vertices_O = MergeClosePoints(std::move(vertices), 1e-9 * size_m.maxCoeff());
+    // The unit ball's polytope, made once. Its normals are the grid's own directions, and
+    // those of the ellipsoid (a, b, c) are their images under diag(1/a, 1/b, 1/c), so the
+    // ellipsoid's polytope is the unit one scaled by (a, b, c). A capsule's (support h_E(n) +
+    // straight |n_z|) is that plus the segment ±straight along z: the unit polytope has an
+    // equator band of vertical faces and no vertex at z = 0, so the upper vertices move up and
+    // the lower down, and the band's faces stretch (the tests check the result against the
+    // true shape).
+    static const TriangleMesh unit = [] {
+      const PrimitiveAxes ball{1, 1, 1, 0};
+      std::vector<Vector3d> polar;
+      for (const Vector3d& n : MakeNormals(ball)) polar.push_back(n / CalcPrimitiveSupport(ball, n));
+      std::vector<Vector3d> vertices;
+      for (const HullPlane& plane : CalcHullPlanes(polar)) vertices.push_back(plane.normal_O / plane.offset_m);
+      TriangleMesh mesh;
+      mesh.vertices_O = MergeClosePoints(std::move(vertices), 1e-12);
+      mesh.triangles = CalcHullTriangles(mesh.vertices_O);
+      return mesh;
+    }();
+    shape->mesh = unit;
+    for (Vector3d& v : shape->mesh.vertices_O) {
+      v = v.cwiseProduct(Vector3d(axes.a, axes.b, axes.c));
+      v.z() += v.z() > 0 ? axes.straight : -axes.straight;
+    }
   }
   // Rounding may put a vertex a few ulps outside the box it must fill exactly.
   const Vector3d half = size_m / 2;
   for (Vector3d& v : shape->mesh.vertices_O) v = v.cwiseMax(-half).cwiseMin(half);
-  if (kind != Primitive::kCylinder) shape->mesh.triangles = CalcHullTriangles(shape->mesh.vertices_O);
   shape->extents = size_m;
   shape->hull_O = shape->mesh.vertices_O;
   if (kind == Primitive::kCylinder) {

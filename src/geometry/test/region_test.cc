@@ -143,6 +143,33 @@ TEST(RegionDegenerateTest, CrossingConstraints) {
   EXPECT_TRUE(Intersect(rect, Region::FromHalfSpaces({{{1, 0, 0}, 0}, {{-1, 0, 0}, -2e-9}})).IsEmpty());
 }
 
+// ContainsAll is Contains for every point, on solids, a collapsed sliver, crossing (empty)
+// constraints and a ball, with points inside, on and just beyond the boundary.
+TEST(RegionQueryTest, ContainsAllIsContainsForEachPoint) {
+  const Region cube = Region::MakeCuboid({0, 0, 0}, Eigen::Matrix3d::Identity(), 1, 1, 1);
+  const Eigen::Vector3d n = Eigen::Vector3d(0.3, 0.2, 1).normalized();
+  const Region regions[] = {
+      cube,
+      Intersect(cube, Region::FromHalfSpaces({{n, 0.1 + 5e-10}, {-n, -0.1}})),  // a sliver
+      Intersect(cube, Region::FromHalfSpaces({{{1, 0, 0}, 0}, {{-1, 0, 0}, -2e-9}})),  // empty
+      Region::MakeSphere({0, 0, 0}, 0.5),
+      Region::Empty(),
+  };
+  std::vector<Eigen::Vector3d> candidates;
+  for (double x : {-0.5 - 3e-9, -0.5, 0.0, 0.1 / n.z(), 0.3, 0.5, 0.5 + 3e-9}) {
+    for (double z : {0.0, 0.1 / n.z(), 0.1 / n.z() + 2e-9, 0.5}) candidates.emplace_back(x, 0, z);
+  }
+  for (const Region& region : regions) {
+    for (size_t i = 0; i < candidates.size(); ++i) {
+      for (size_t j = i; j < candidates.size(); ++j) {
+        const std::vector<Eigen::Vector3d> points{candidates[i], candidates[j]};
+        EXPECT_EQ(region.ContainsAll(points), region.Contains(points[0]) && region.Contains(points[1]))
+            << region.Describe() << " " << points[0].transpose() << " / " << points[1].transpose();
+      }
+    }
+  }
+}
+
 TEST(RegionDegenerateTest, EmptyRegion) {
   const Region e = Region::Empty();
   EXPECT_TRUE(e.IsEmpty());

@@ -114,7 +114,8 @@ d = Disk completely on t
 )");
   ASSERT_NE(program, nullptr);
   SceneSampler sampler(*program);
-  const SceneObject& d = Find(sampler.Sample(1, 0).scene, "d");
+  const SampledScene s = sampler.Sample(1, 0);
+  const SceneObject& d = Find(s.scene, "d");
   EXPECT_TRUE(d.primitive);
   EXPECT_EQ(d.mesh, nullptr);
 }
