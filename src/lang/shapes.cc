@@ -191,9 +191,15 @@ void Interpreter::SetOnMeshSurfaces(PositionConstraint& c, int index, int target
   X_WX.linear() = R_WX;
   X_WX.translation() = x.p_WO;
   c.pieces = geometry::RegionUnion(std::make_shared<const geometry::PieceSet>(std::move(pieces_X)), X_WX);
-  c.pieces_description = "the upward-facing surfaces of " + x.DisplayName(target) + " (its mesh '" + x.mesh->name + "', " +
-                         std::to_string(x.mesh->supports_O.size()) + " pieces)" +
-                         (completely ? " with room for the whole footprint" : "");
+  if (x.primitive) {  // a cylinder's top, or none: a sphere and a capsule have no flat top
+    c.pieces_description = "the top of " + x.DisplayName(target) + " (a " + x.mesh->name +
+                           (x.mesh->supports_O.empty() ? ", which has no flat top to stand on)" : ")") +
+                           (completely ? " with room for the whole footprint" : "");
+  } else {
+    c.pieces_description = "the upward-facing surfaces of " + x.DisplayName(target) + " (its mesh '" +
+                           x.mesh->name + "', " + std::to_string(x.mesh->supports_O.size()) + " pieces)" +
+                           (completely ? " with room for the whole footprint" : "");
+  }
 }
 
 }  // namespace prs::lang::internal
