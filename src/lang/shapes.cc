@@ -151,6 +151,11 @@ bool Interpreter::DoObjectsOverlap(int a, int b) {
   const SceneObject& oa = scene_.objects[a];
   const SceneObject& ob = scene_.objects[b];
   if (!oa.mesh && !ob.mesh) return true;
+  // FCL fits its bounding volumes through covariance matrices, which overflow for sizes far
+  // beyond any scene (and it then prints to stderr): such objects keep the boxes' answer,
+  // which holds their shapes, so it is only more cautious.
+  constexpr double kMaxMeshCollisionSizeM = 1e6;
+  if (std::max(oa.dimensions.maxCoeff(), ob.dimensions.maxCoeff()) > kMaxMeshCollisionSizeM) return true;
   auto pose = [](const SceneObject& o) {
     Eigen::Isometry3d X = Eigen::Isometry3d::Identity();
     X.linear() = o.R_WO.toRotationMatrix();

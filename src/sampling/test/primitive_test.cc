@@ -101,6 +101,29 @@ TEST(PrimitiveSceneTest, ScenesAreTheSameWhicheverPolytopesTheCacheHolds) {
   }
 }
 
+// Absurd sizes (1e300 m) collide as their boxes, without FCL's overflowing covariance fits
+// printing to stderr; tiny ones (1e-300 m) are quiet too, and do not collide: smaller than the
+// touching allowance, as boxes that small do not (geometry::DoBoxesOverlap).
+TEST(PrimitiveSceneTest, AbsurdSizesCollideAsTheirBoxesQuietly) {
+  for (const char* size : {"1e300", "1e-300"}) {
+    auto program = CompileOrDie(std::string("class Ball:\n    shape: Sphere()\n    width: ") + size +
+                                "\n    length: " + size + "\n    height: " + size +
+                                "\na = Ball at V3D(0, 0, 1)\nb = Ball at V3D(0, 0, 1)\n");
+    ASSERT_NE(program, nullptr);
+    ::testing::internal::CaptureStderr();
+    geometry::Rng rng(1, 0);
+    const lang::AttemptResult result = lang::RunAttempt(*program, rng, lang::RunOptions{});
+    EXPECT_EQ(::testing::internal::GetCapturedStderr(), "") << size;
+    const auto* rejection = std::get_if<lang::Rejection>(&result);
+    if (std::string(size) == "1e-300") {
+      EXPECT_EQ(rejection, nullptr);
+      continue;
+    }
+    ASSERT_NE(rejection, nullptr) << size;
+    EXPECT_EQ(rejection->kind, lang::RejectionKind::kCollision) << size;
+  }
+}
+
 TEST(PrimitiveSceneTest, AShapeWithAZeroSizeStaysItsFlatBox) {
   auto program = CompileOrDie(R"(
 from model import *
