@@ -42,8 +42,9 @@ SceneObjectView GetObject(const ScenePtr& scene, const std::string& name) {
   return {scene, index};
 }
 
-py::dict ToDict(const std::vector<std::pair<std::string, lang::Value>>& entries,
-                bool skip_core = false) {
+// (name, value) pairs: an object's PropertyList or a scene's params.
+template <typename Entries>
+py::dict ToDict(const Entries& entries, bool skip_core = false) {
   py::dict dict;
   for (const auto& [name, value] : entries) {
     if (skip_core && output::IsCoreProperty(name)) continue;

@@ -240,6 +240,7 @@ class FixedAnalysis {
   bool StepFixed(const PlanStep& step, const std::map<std::string, bool>& props, int m);
   bool DefaultFixed(const PropertyDefault& d, const std::map<std::string, bool>& props);
   void MarkPlan(ObjectPlan& plan, int m);
+  static bool AllButPositionFixed(const ObjectPlan& plan, const std::map<std::string, bool>& props);
 
   CompiledProgram& program_;
   std::vector<Env> envs_;
@@ -341,6 +342,27 @@ void FixedAnalysis::MarkPlan(ObjectPlan& plan, int m) {
   bool all_fixed = true;
   for (const auto& [name, fixed] : props) all_fixed = all_fixed && fixed;
   plan.object_fixed = all_fixed;
+  plan.template_fixed = !all_fixed && plan.open_turn == ObjectPlan::OpenTurn::kNone &&
+                        AllButPositionFixed(plan, props);
+}
+
+// Whether every step but the position is fixed, and the steps after the position set only
+// properties the placement never reads (so a template made after all steps places the same).
+bool FixedAnalysis::AllButPositionFixed(const ObjectPlan& plan,
+                                        const std::map<std::string, bool>& props) {
+  // (allowCollisions is read from the object's field, which only FinishObject sets.)
+  static const std::set<std::string> kReadByPlacement = {
+      "width", "length", "height", "orientation", "yaw", "pitch", "roll", "shape"};
+  bool has_position = false;
+  for (const PlanStep& step : plan.steps) {
+    if (step.kind == PlanStepKind::kPosition) {
+      has_position = true;
+      continue;
+    }
+    if (!props.at(step.property)) return false;
+    if (has_position && kReadByPlacement.count(step.property)) return false;
+  }
+  return has_position;
 }
 
 }  // namespace

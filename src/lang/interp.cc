@@ -67,7 +67,7 @@ void Interpreter::RunModule(int module_index) {
   if (cacheable) {
     auto it = options_.cache->module_globals.find(module_index);
     if (it != options_.cache->module_globals.end()) {
-      module_envs_[module_index] = it->second;
+      module_envs_[module_index].shared = &it->second;
       module_shared_[module_index] = true;
       return;
     }
@@ -79,17 +79,20 @@ void Interpreter::RunModule(int module_index) {
   ExecBody(program_.modules[module_index]->ast.body);
   current_module_ = saved;
   // A module that imports an unshared one may hold its draws (`from random import *`).
-  if (cacheable && draws_ == draws_before && scene_.objects.size() == objects_before &&
-      scene_.params.size() == params_before && !imports_unshared_[module_index] &&
-      IsSameInEveryScene(module_envs_[module_index])) {
-    // Scenes carry these regions (Scene::workspace) to other threads: fill their lazily
-    // computed caches now, so that reading them there races with nothing.
-    for (const auto& [name, value] : module_envs_[module_index]) {
-      if (value.Is<RegionPtr>()) value.As<RegionPtr>()->Finalize();
-    }
-    options_.cache->module_globals[module_index] = module_envs_[module_index];
-    module_shared_[module_index] = true;
+  if (!cacheable || draws_ != draws_before || scene_.objects.size() != objects_before ||
+      scene_.params.size() != params_before || imports_unshared_[module_index]) {
+    return;
   }
+  Env globals = module_envs_[module_index].Flatten();
+  if (!IsSameInEveryScene(globals)) return;
+  // Scenes carry these regions (Scene::workspace) to other threads: fill their lazily
+  // computed caches now, so that reading them there races with nothing.
+  for (const auto& [name, value] : globals) {
+    if (value.Is<RegionPtr>()) value.As<RegionPtr>()->Finalize();
+  }
+  const Env& kept = options_.cache->module_globals[module_index] = std::move(globals);
+  module_envs_[module_index] = ModuleEnv{&kept, {}};
+  module_shared_[module_index] = true;
 }
 
 // Whether a value can be shared by later scenes: not one that a scene can change (lists,
@@ -163,7 +166,13 @@ Flow Interpreter::Exec(const Stmt& stmt) {
     const int target = program_.import_targets.at(node);
     RunModule(target);
     if (!module_shared_[target]) imports_unshared_[current_module_] = true;
-    for (const auto& [name, value] : module_envs_[target]) module_envs_[current_module_][name] = value;
+    const ModuleEnv& from = module_envs_[target];
+    ModuleEnv& into = module_envs_[current_module_];
+    if (into.empty() && from.own.empty()) {
+      into.shared = from.shared;  // the same values, not copied
+    } else {
+      for (const auto& [name, value] : from.Flatten()) into.own[name] = value;
+    }
   }
   return Flow::kNormal;
 }
@@ -280,7 +289,7 @@ void Interpreter::ExecParam(const ParamStmt& node) {
 }
 
 void Interpreter::Bind(const std::string& name, Value value) {
-  Env& env = locals_ ? *locals_ : module_envs_[current_module_];
+  Env& env = locals_ ? *locals_ : module_envs_[current_module_].own;
   env[name] = std::move(value);
 }
 
@@ -290,9 +299,7 @@ Value Interpreter::Lookup(const std::string& name, SourceSpan span) {
     auto it = locals_->find(name);
     if (it != locals_->end()) return it->second;
   }
-  const Env& globals = module_envs_[current_module_];
-  auto it = globals.find(name);
-  if (it != globals.end()) return it->second;
+  if (const Value* global = module_envs_[current_module_].Find(name)) return *global;
   if (const BuiltinInfo* info = FindGlobalBuiltin(name)) return BuiltinRef{info->id};
   const auto& classes = program_.class_scopes[current_module_];
   if (auto cls = classes.find(name); cls != classes.end()) return cls->second;

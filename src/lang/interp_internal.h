@@ -21,6 +21,30 @@ enum class Flow { kNormal, kBreak, kContinue, kReturn };
 
 using Env = std::unordered_map<std::string, Value>;
 
+/// A module's globals: its own bindings over an optional shared layer, the globals of a module
+/// whose run is the same in every scene (RunCache::module_globals), read but never written.
+/// Importing such a module into one that has bound nothing yet, or running it, takes its
+/// globals as the layer instead of copying them; any other import copies (later bindings win).
+struct ModuleEnv {
+  const Env* shared = nullptr;
+  Env own;
+
+  const Value* Find(const std::string& name) const {
+    if (auto it = own.find(name); it != own.end()) return &it->second;
+    if (shared) {
+      if (auto it = shared->find(name); it != shared->end()) return &it->second;
+    }
+    return nullptr;
+  }
+  bool empty() const { return own.empty() && (!shared || shared->empty()); }
+  /// Every binding, the shared layer's under the module's own.
+  Env Flatten() const {
+    Env all = shared ? *shared : Env{};
+    for (const auto& [name, value] : own) all[name] = value;
+    return all;
+  }
+};
+
 /// Thrown to abandon the attempt: not an error, the sampler counts it and restarts.
 struct RejectSignal {
   Rejection rejection;
@@ -197,9 +221,13 @@ class Interpreter {
   std::string DescribeBox(int index) const;  // "c (0.05 x 0.05 x 0.05 m at (x, y, z))"
   const geometry::ConvexRegion* Workspace() const;
   const RegionPtr* FindWorkspace() const;  // null when `workspace` is not a region
+  bool IsWorkspaceKept() const;  // the current module's workspace is from a shared module
 
   // --- placement (placement.cc) ---
   Eigen::Vector3d PlacePosition(const ObjectPlan& plan, int index, SourceSpan span);
+  geometry::ConvexRegion ErodeWorkspace(const geometry::ConvexRegion& workspace, int index);
+  // PlacePosition with draws named after "position"; sets p_WO (objects.cc).
+  Eigen::Vector3d PlaceObject(const ObjectPlan& plan, int index, SourceSpan span);
   PositionConstraint EvalPositionConstraint(const Specifier& s, int index,
                                             ObjectPlan::OpenTurn open);
   PositionConstraint EvalOnConstraint(const Specifier& s, int index, bool completely,
@@ -255,6 +283,13 @@ class Interpreter {
   // Fixed objects (ObjectPlan::object_fixed) built once per RunCache and copied afterwards.
   const SceneObject* CachedFixedObject(const ObjectPlan& plan) const;
   void StoreFixedObject(const ObjectPlan& plan, int index, int64_t draws_before);
+  // Objects fixed but for their position (ObjectPlan::template_fixed): the first one built is
+  // kept as a template when its other steps had no effect beyond the object (`effects`: draws
+  // and objects made by them); later ones copy it and run only the position step.
+  const RunCache::ObjectTemplate* CachedTemplate(const ObjectPlan& plan) const;
+  void StoreTemplate(const ObjectPlan& plan, int index, int64_t effects);
+  Value CreateFromTemplate(const ObjectPlan& plan, const RunCache::ObjectTemplate& kept,
+                           SourceSpan span);
   Eigen::Vector3d SampleNaive(const std::vector<PositionConstraint>& constraints, int index,
                               SourceSpan span);
   // Why no position fits: the empty specifier with the sizes involved, or every region.
@@ -280,7 +315,7 @@ class Interpreter {
   RunOptions options_;
   Scene scene_;
   std::vector<bool> completed_;      // per object: fully placed (collision checks use these)
-  std::vector<Env> module_envs_;
+  std::vector<ModuleEnv> module_envs_;
   std::vector<bool> module_ran_;
   std::vector<bool> module_shared_;     // globals from, or stored in, RunCache::module_globals
   std::vector<bool> imports_unshared_;  // imported a module whose globals are not shared

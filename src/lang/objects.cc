@@ -23,9 +23,12 @@ Value Interpreter::CreateObject(const ObjectPlan& plan, SourceSpan span) {
     RegisterFixedSightChecks(plan, index);
     return ObjectRef{index};
   }
+  if (const RunCache::ObjectTemplate* kept = CachedTemplate(plan)) {
+    return CreateFromTemplate(plan, *kept, span);
+  }
   const int64_t draws_before = draws_;
   SceneObject object;
-  object.properties.reserve(plan.steps.size() + 1);  // every property once, and the position
+  object.properties.Mutable().reserve(plan.steps.size() + 1);  // each property, the position
   object.cls = plan.cls;
   object.span = span;
   object.fixed = plan.object_fixed;
@@ -33,27 +36,31 @@ Value Interpreter::CreateObject(const ObjectPlan& plan, SourceSpan span) {
   pending_name_ = nullptr;  // nested creations inside the specifiers stay anonymous
   scene_.objects.push_back(std::move(object));
   completed_.push_back(false);
+  int64_t effects = 0;  // draws and objects made by the steps other than the position
   for (const PlanStep& step : plan.steps) {
     if (step.kind == PlanStepKind::kPosition) {
-      static const std::string kPosition = "position";
-      Vector3d p;
-      {
-        const NamingScope naming(*this, index, &kPosition);  // draws in its specifiers
-        p = PlacePosition(plan, index, span);
-      }
-      scene_.objects[index].p_WO = p;
-      SetProperty(index, "position", Value(p), span);
-    } else {
-      RunPlanStep(step, index, span);
-      if (step.kind == PlanStepKind::kOrientation &&
-          plan.open_turn != ObjectPlan::OpenTurn::kNone) {
-        CheckOpenTurn(index);
-      }
+      SetProperty(index, "position", Value(PlaceObject(plan, index, span)), span);
+      continue;
     }
+    const int64_t before = draws_ + static_cast<int64_t>(scene_.objects.size());
+    RunPlanStep(step, index, span);
+    if (step.kind == PlanStepKind::kOrientation && plan.open_turn != ObjectPlan::OpenTurn::kNone) {
+      CheckOpenTurn(index);
+    }
+    effects += draws_ + static_cast<int64_t>(scene_.objects.size()) - before;
   }
+  StoreTemplate(plan, index, effects);
   FinishObject(index, span);
   StoreFixedObject(plan, index, draws_before);
   return ObjectRef{index};
+}
+
+Vector3d Interpreter::PlaceObject(const ObjectPlan& plan, int index, SourceSpan span) {
+  static const std::string kPosition = "position";
+  const NamingScope naming(*this, index, &kPosition);  // draws in its specifiers
+  const Vector3d p = PlacePosition(plan, index, span);
+  scene_.objects[index].p_WO = p;
+  return p;
 }
 
 void Interpreter::RunPlanStep(const PlanStep& step, int index, SourceSpan span) {
@@ -167,14 +174,15 @@ void Interpreter::SetProperty(int index, const std::string& name, Value value,
     o.primitive = primitive ? std::optional(primitive->kind) : std::nullopt;
   }
   bool replaced = false;
-  for (auto& [existing, v] : o.properties) {
+  std::vector<PropertyList::Entry>& properties = o.properties.Mutable();
+  for (auto& [existing, v] : properties) {
     if (std::string_view(existing) == key) {
       v = std::move(value);
       replaced = true;
       break;
     }
   }
-  if (!replaced) o.properties.emplace_back(name, std::move(value));
+  if (!replaced) properties.emplace_back(name, std::move(value));
   const bool size = key == "width"sv || key == "length"sv || key == "height"sv;
   if (o.primitive && (size || key == "shape"sv)) SetPrimitiveMesh(index);
 }
@@ -240,10 +248,17 @@ const geometry::ConvexRegion* Interpreter::Workspace() const {
 }
 
 const RegionPtr* Interpreter::FindWorkspace() const {
-  const Env& env = module_envs_[current_module_];
-  auto it = env.find("workspace");
-  if (it == env.end() || !it->second.Is<RegionPtr>()) return nullptr;
-  return &it->second.As<RegionPtr>();
+  const Value* workspace = module_envs_[current_module_].Find("workspace");
+  if (!workspace || !workspace->Is<RegionPtr>()) return nullptr;
+  return &workspace->As<RegionPtr>();
+}
+
+// A workspace bound by a shared module (ModuleEnv::shared) is the same region in every scene
+// and lives as long as the cache: what is worked out from it may be kept there.
+bool Interpreter::IsWorkspaceKept() const {
+  const ModuleEnv& env = module_envs_[current_module_];
+  return options_.cache && env.shared && env.shared->count("workspace") &&
+         !env.own.count("workspace");
 }
 
 // Every object's whole box inside the workspace (spec §6), checked once the program has run.
@@ -255,11 +270,17 @@ void Interpreter::CheckWorkspace() {
   const geometry::ConvexRegion* workspace = found->get();
   const RejectionKind kind = options_.mode == SamplingMode::kNaive ? RejectionKind::kContainment
                                                                    : RejectionKind::kWorkspace;
+  // A kept fixed object found inside a kept workspace once is inside it in every scene.
+  const bool workspace_kept = IsWorkspaceKept();
   for (int i = 0; i < static_cast<int>(scene_.objects.size()); ++i) {
     const SceneObject& o = scene_.objects[i];
+    const bool keep = workspace_kept && o.fixed_id != 0;
+    const std::pair<uint64_t, const geometry::ConvexRegion*> key{o.fixed_id, workspace};
+    if (keep && options_.cache->fixed_inside_workspace.count(key)) continue;
     const bool inside = o.cls->has_box ? RegionContainsObject(*workspace, i, 1e-9)
                                        : workspace->Contains(o.p_WO);
     if (!inside) Reject(kind, o.DisplayName(i) + " outside the workspace", o.span);
+    if (keep) options_.cache->fixed_inside_workspace.insert(key);
   }
 }
 

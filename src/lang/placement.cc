@@ -5,6 +5,7 @@
 // (the paper's baseline).
 #include <algorithm>
 #include <cmath>
+#include <cstring>
 #include <limits>
 #include <optional>
 
@@ -69,10 +70,7 @@ Vector3d Interpreter::PlacePosition(const ObjectPlan& plan, int index, SourceSpa
   if (options_.mode == SamplingMode::kNaive) return SampleNaive(constraints, index, span);
   ConvexRegion region = ConvexRegion::All();
   const ConvexRegion* workspace = plan.fold_workspace ? Workspace() : nullptr;
-  if (workspace) {
-    const geometry::OrientedBox box = BoxOf(index);
-    region = geometry::ErodeByBox(*workspace, box.R_WB, box.half_extents);
-  }
+  if (workspace) region = ErodeWorkspace(*workspace, index);
   for (const PositionConstraint& c : constraints) {
     if (!c.is_point) region = geometry::Intersect(region, c.region);
   }
@@ -221,6 +219,21 @@ PositionConstraint Interpreter::EvalPositionConstraint(const Specifier& s, int i
 }
 
 // `on X` / `completely on X`: X's top face (or a planar region) lifted by half the height.
+// The centres where the object's whole box is inside the workspace. A kept workspace eroded by
+// one box (size and orientation) is the same in every scene, so it is made once and kept.
+ConvexRegion Interpreter::ErodeWorkspace(const ConvexRegion& workspace, int index) {
+  const geometry::OrientedBox box = BoxOf(index);
+  if (!IsWorkspaceKept()) return geometry::ErodeByBox(workspace, box.R_WB, box.half_extents);
+  RunCache::ErodedKey key{&workspace, {}};  // bit patterns: -0 and 0 stay apart
+  std::memcpy(key.second.data(), box.R_WB.data(), 9 * sizeof(double));
+  std::memcpy(key.second.data() + 9, box.half_extents.data(), 3 * sizeof(double));
+  auto& kept = options_.cache->eroded_workspaces;
+  if (auto it = kept.find(key); it != kept.end()) return it->second;
+  ConvexRegion eroded = geometry::ErodeByBox(workspace, box.R_WB, box.half_extents);
+  if (kept.size() < RunCache::kMaxEroded) kept.emplace(key, eroded);
+  return eroded;
+}
+
 PositionConstraint Interpreter::EvalOnConstraint(const Specifier& s, int index, bool completely,
                                                  ObjectPlan::OpenTurn open) {
   PositionConstraint c;
@@ -228,7 +241,6 @@ PositionConstraint Interpreter::EvalOnConstraint(const Specifier& s, int index, 
   const SceneObject& self = scene_.objects[index];
   const double half_height = self.dimensions.z() / 2;
   const Value target = Eval(*s.target);
-  const std::string what = "the argument of '" + std::string(SpecifierName(s.kind)) + "'";
   if (const auto* ref = std::get_if<ObjectRef>(&target.data)) {
     c.target_object = ref->index;
     const SceneObject& x = scene_.objects[ref->index];
@@ -252,7 +264,9 @@ PositionConstraint Interpreter::EvalOnConstraint(const Specifier& s, int index, 
     const Vector3d up = target.Is<OrientedPoint>()
                             ? Vector3d(target.As<OrientedPoint>().R_WF.toRotationMatrix().col(2))
                             : Vector3d::UnitZ();
-    c.p_W = ToVector(target, s.target->span, what) + up * half_height;
+    c.p_W = ToVector(target, s.target->span,
+                     "the argument of '" + std::string(SpecifierName(s.kind)) + "'") +
+            up * half_height;
     if (completely) {
       Fail(s.span, "bad-specifier", "'completely on' needs an object or a planar region to "
                                     "contain the object's footprint; use 'on' for a point");

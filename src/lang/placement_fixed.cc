@@ -4,7 +4,8 @@
 // (spec §7): the fraction of the region cut away is the same in every scene, so removing it
 // changes no scene's weight, only the number of rejected attempts. The pieces are built once
 // per thread and cached (RunCache); building or reusing them consumes the same random draws.
-// Objects that are wholly fixed (ObjectPlan::object_fixed) are likewise built once and copied.
+// Objects that are wholly fixed (ObjectPlan::object_fixed) are likewise built once and copied,
+// and objects fixed but for their position (ObjectPlan::template_fixed) copied, then placed.
 #include <algorithm>
 #include <atomic>
 
@@ -30,6 +31,13 @@ namespace {
 
 // Past this many pieces, further obstacles are left to the collision check (still exact).
 constexpr size_t kMaxPieces = 256;
+
+// A counter, not random state: ids only tell copies of one kept object apart from others
+// (SceneObject::fixed_id and template_id share it, so no two kept objects share an id).
+uint64_t NextKeptId() {
+  static std::atomic<uint64_t> next{1};
+  return next.fetch_add(1, std::memory_order_relaxed);
+}
 
 }  // namespace
 
@@ -151,10 +159,54 @@ void Interpreter::StoreFixedObject(const ObjectPlan& plan, int index, int64_t dr
   for (const auto& [name, value] : object.properties) {
     if (!IsSameInEveryScene(value)) return;
   }
-  // A counter, not random state: ids only tell copies of one kept object apart from others.
-  static std::atomic<uint64_t> next_fixed_id{1};
-  object.fixed_id = next_fixed_id.fetch_add(1, std::memory_order_relaxed);
+  object.fixed_id = NextKeptId();
   options_.cache->fixed_objects.emplace(&plan, object);
+}
+
+const RunCache::ObjectTemplate* Interpreter::CachedTemplate(const ObjectPlan& plan) const {
+  if (!plan.template_fixed || !options_.cache) return nullptr;
+  auto it = options_.cache->object_templates.find(&plan);
+  return it == options_.cache->object_templates.end() ? nullptr : &it->second;
+}
+
+// Keeps the object as its site's template when its steps but the position drew nothing, made
+// no object and left no property that refers to this scene's objects. Called once the steps
+// have run and before the scene checks (FinishObject), so the template is the object exactly
+// as the position step of a later copy finds it, but for properties the placement never reads
+// (ObjectPlan::template_fixed).
+void Interpreter::StoreTemplate(const ObjectPlan& plan, int index, int64_t effects) {
+  if (!plan.template_fixed || !options_.cache || effects != 0) return;
+  SceneObject& object = scene_.objects[index];
+  size_t position_slot = object.properties.size();
+  for (size_t i = 0; i < object.properties.size(); ++i) {
+    const auto& [name, value] = object.properties[i];
+    if (name == "position") {
+      position_slot = i;
+    } else if (!IsSameInEveryScene(value)) {
+      return;
+    }
+  }
+  if (position_slot == object.properties.size()) return;
+  object.template_id = NextKeptId();
+  options_.cache->object_templates.emplace(&plan, RunCache::ObjectTemplate{object, position_slot});
+}
+
+// A copy of the template, placed: the same as running every step, since the other steps give
+// the template's values in every scene. The scene checks follow as for any object.
+Value Interpreter::CreateFromTemplate(const ObjectPlan& plan, const RunCache::ObjectTemplate& kept,
+                                      SourceSpan span) {
+  const int index = static_cast<int>(scene_.objects.size());
+  scene_.objects.push_back(kept.object);
+  SceneObject& object = scene_.objects.back();
+  object.span = span;
+  object.name.reset();
+  if (pending_name_) object.name = *pending_name_;
+  pending_name_ = nullptr;
+  completed_.push_back(false);
+  const Vector3d p = PlaceObject(plan, index, span);
+  scene_.objects[index].properties.Mutable()[kept.position_slot].second = Value(p);
+  FinishObject(index, span);
+  return ObjectRef{index};
 }
 
 }  // namespace prs::lang::internal

@@ -72,6 +72,11 @@ struct ObjectPlan {
   bool region_fixed = false;
   /// Every property, the position included, is the same in every scene: a fixed obstacle.
   bool object_fixed = false;
+  /// Every property but the position is the same in every scene, and nothing the placement
+  /// reads (size, shape, orientation) comes after the position step: the
+  /// object is built once per thread as a template (RunCache::object_templates), and later
+  /// scenes copy it and only place it (placement_fixed.cc).
+  bool template_fixed = false;
   /// Set when the orientation reads the position while a position specifier needs the box's
   /// orientation (`completely on X, facing toward Y`; spec §7): the position is drawn from a
   /// superset of the valid centres that holds for every orientation the object may take, and

@@ -3,8 +3,11 @@
 // sampling thread owns one (sampling::SceneSampler does).
 #pragma once
 
+#include <array>
+#include <cstdint>
 #include <map>
 #include <memory>
+#include <set>
 #include <string>
 #include <tuple>
 #include <unordered_map>
@@ -34,6 +37,22 @@ class RunCache {
   std::unordered_map<int, std::unordered_map<std::string, Value>> module_globals;
   /// Objects of fixed creation sites (ObjectPlan::object_fixed), as first built.
   std::unordered_map<const ObjectPlan*, SceneObject> fixed_objects;
+  /// Objects of creation sites fixed but for their position (ObjectPlan::template_fixed), as
+  /// first built; `position_slot` is where "position" is in their properties.
+  struct ObjectTemplate {
+    SceneObject object;
+    size_t position_slot = 0;
+  };
+  std::unordered_map<const ObjectPlan*, ObjectTemplate> object_templates;
+  /// Kept fixed objects (by SceneObject::fixed_id) found inside a kept workspace (a region
+  /// in module_globals, alive as long as this cache): not tested again.
+  std::set<std::pair<uint64_t, const geometry::ConvexRegion*>> fixed_inside_workspace;
+  /// A kept workspace eroded by a box (the bits of its rotation's 9 entries, then of its
+  /// half-extents), at most kMaxEroded of them (sizes drawn anew in every scene would
+  /// otherwise grow it without end).
+  using ErodedKey = std::pair<const geometry::ConvexRegion*, std::array<uint64_t, 12>>;
+  static constexpr size_t kMaxEroded = 256;
+  std::map<ErodedKey, geometry::ConvexRegion> eroded_workspaces;
   /// Collision shapes of meshes (by mesh and scale) and of boxes that meet a mesh (by size).
   std::map<std::tuple<const shapes::MeshShape*, double, double, double>,
            std::shared_ptr<const shapes::Collider>> colliders;

@@ -4,6 +4,8 @@
 
 #include <Eigen/Core>
 #include <Eigen/Geometry>
+#include <initializer_list>
+#include <memory>
 #include <optional>
 #include <string>
 #include <utility>
@@ -15,6 +17,37 @@
 namespace prs::lang {
 
 struct ClassInfo;
+
+/// An object's properties in definition order. Copies share one list until one of them is
+/// changed (copy on write), so an object a sampler copies unchanged into every scene
+/// (SceneObject::fixed_id) costs no copy of its properties. Read it as a vector of
+/// (name, value) pairs.
+class PropertyList {
+ public:
+  using Entry = std::pair<std::string, Value>;
+  PropertyList() = default;
+  PropertyList(std::initializer_list<Entry> entries)
+      : entries_(std::make_shared<std::vector<Entry>>(entries)) {}
+
+  const Entry* begin() const { return entries_ ? entries_->data() : nullptr; }
+  const Entry* end() const { return entries_ ? entries_->data() + entries_->size() : nullptr; }
+  size_t size() const { return entries_ ? entries_->size() : 0; }
+  bool empty() const { return size() == 0; }
+  const Entry& operator[](size_t i) const { return (*entries_)[i]; }
+
+  /// The entries for writing: this list's own, copied first if another list shares them.
+  std::vector<Entry>& Mutable() {
+    if (!entries_) {
+      entries_ = std::make_shared<std::vector<Entry>>();
+    } else if (entries_.use_count() > 1) {
+      entries_ = std::make_shared<std::vector<Entry>>(*entries_);
+    }
+    return *entries_;
+  }
+
+ private:
+  std::shared_ptr<std::vector<Entry>> entries_;
+};
 
 struct SceneObject {
   std::optional<std::string> name;  // the first variable it was bound to; none if anonymous
@@ -37,8 +70,12 @@ struct SceneObject {
   /// fixed_objects): objects with the same id are equal in every field, so what is made from
   /// one (its JSON text) serves them all. Ids are never reused within a process.
   uint64_t fixed_id = 0;
+  /// Nonzero for an object copied from a creation site's template (RunCache::object_templates;
+  /// ObjectPlan::template_fixed): objects with the same id are equal in every field but their
+  /// name, span, p_WO and "position" property. Drawn from the same counter as fixed_id.
+  uint64_t template_id = 0;
   /// Every property in definition order, position and orientation included.
-  std::vector<std::pair<std::string, Value>> properties;
+  PropertyList properties;
 
   const Value* FindProperty(const std::string& property) const;
   /// The object's display name: its variable, or "Class#index".

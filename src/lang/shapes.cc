@@ -147,9 +147,13 @@ std::shared_ptr<const shapes::Collider> Interpreter::ColliderOf(int index) {
 }
 
 bool Interpreter::DoObjectsOverlap(int a, int b) {
-  if (!geometry::DoBoxesOverlap(BoxOf(a), BoxOf(b))) return false;
   const SceneObject& oa = scene_.objects[a];
   const SceneObject& ob = scene_.objects[b];
+  // Objects whose boxes' circumscribed balls are apart cannot meet (a shape lies in its box):
+  // most pairs of a scene, decided without building either box.
+  const double reach_m = (oa.dimensions.norm() + ob.dimensions.norm()) / 2;
+  if ((oa.p_WO - ob.p_WO).squaredNorm() > reach_m * reach_m) return false;
+  if (!geometry::DoBoxesOverlap(BoxOf(a), BoxOf(b))) return false;
   if (!oa.mesh && !ob.mesh) return true;
   // FCL fits its bounding volumes through covariance matrices, which overflow for sizes far
   // beyond any scene (and it then prints to stderr): such objects keep the boxes' answer,

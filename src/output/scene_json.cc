@@ -7,6 +7,7 @@
 #include <fmt/compile.h>
 #include <fmt/format.h>
 
+#include <algorithm>
 #include <charconv>
 #include <cmath>
 #include <cstdint>
@@ -19,6 +20,61 @@ namespace prs::output {
 namespace {
 
 using Out = std::string;
+
+}  // namespace
+
+// fmt's "{}" for a finite double, written from fmt's own shortest digits (Dragonbox) without
+// fmt's general float writer, which handles padding, locales and precisions that "{}" never
+// uses. The layout is fmt's: fixed notation for decimal exponents in [-4, 16), else d.ddde±XX.
+char* WriteShortest(double x, char* out) {
+  if (std::signbit(x)) {
+    *out++ = '-';
+    x = -x;
+  }
+  if (x == 0) {
+    *out++ = '0';
+    return out;
+  }
+  const auto decimal = fmt::detail::dragonbox::to_decimal(x);
+  char digits[20];
+  int size = 0;
+  for (uint64_t n = decimal.significand; n != 0; n /= 10) digits[19 - size++] = char('0' + n % 10);
+  const char* first = digits + 20 - size;
+  const int output_exp = decimal.exponent + size - 1;
+  if (output_exp < -4 || output_exp >= 16) {
+    *out++ = first[0];
+    if (size > 1) {
+      *out++ = '.';
+      out = std::copy(first + 1, first + size, out);
+    }
+    *out++ = 'e';
+    *out++ = output_exp < 0 ? '-' : '+';
+    const int e = output_exp < 0 ? -output_exp : output_exp;
+    if (e >= 100) {
+      if (e >= 1000) *out++ = char('0' + e / 1000);
+      *out++ = char('0' + e / 100 % 10);
+    }
+    *out++ = char('0' + e / 10 % 10);
+    *out++ = char('0' + e % 10);
+    return out;
+  }
+  const int point = decimal.exponent + size;  // digits before the decimal point
+  if (decimal.exponent >= 0) {  // 1234e5 -> 123400000
+    out = std::copy(first, first + size, out);
+    return std::fill_n(out, decimal.exponent, '0');
+  }
+  if (point > 0) {  // 1234e-2 -> 12.34
+    out = std::copy(first, first + point, out);
+    *out++ = '.';
+    return std::copy(first + point, first + size, out);
+  }
+  *out++ = '0';  // 1234e-6 -> 0.001234
+  *out++ = '.';
+  out = std::fill_n(out, -point, '0');
+  return std::copy(first, first + size, out);
+}
+
+namespace {
 
 // Shortest round-trip digits; integral values keep a ".0" so readers see a float, and
 // non-finite values (never produced for positions) become null as JSON has no spelling for them.
@@ -37,8 +93,8 @@ void AppendNumber(double x, Out& out) {
     out += ".0";
     return;
   }
-  char digits[32];  // fmt's shortest form, compiled: no format-string parsing per number
-  char* end = fmt::format_to(digits, FMT_COMPILE("{}"), x);
+  char digits[32];
+  char* end = WriteShortest(x, digits);
   out.append(digits, end);
   // A number with a fractional part always shows a '.' or an exponent; only a whole number
   // too large for the branch above may lack both.
@@ -176,7 +232,9 @@ void AppendObjectOrientation(const Eigen::Quaterniond& R_WO, Out& out) {
   }
 }
 
-void AppendObjectText(const lang::SceneObject& o, Out& out) {
+// `{"name":...,"class":...,"position":[...],` — the part of an object's text that differs
+// between copies of one template (SceneObject::template_id).
+void AppendObjectHead(const lang::SceneObject& o, Out& out) {
   out += "{\"name\":";
   if (o.name) {
     AppendString(*o.name, out);
@@ -187,7 +245,12 @@ void AppendObjectText(const lang::SceneObject& o, Out& out) {
   AppendString(o.cls->name, out);
   out += ",\"position\":";
   AppendNumbers({o.p_WO.x(), o.p_WO.y(), o.p_WO.z()}, out);
-  out += ",\"orientation\":{";
+  out += ',';
+}
+
+// `"orientation":{...},"dimensions":[...],"properties":{...}}`: the rest.
+void AppendObjectTail(const lang::SceneObject& o, Out& out) {
+  out += "\"orientation\":{";
   AppendObjectOrientation(o.R_WO, out);
   out += "},\"dimensions\":";
   AppendNumbers({o.dimensions.x(), o.dimensions.y(), o.dimensions.z()}, out);
@@ -196,31 +259,40 @@ void AppendObjectText(const lang::SceneObject& o, Out& out) {
   out += '}';
 }
 
-// An object a sampler copies unchanged into every scene (SceneObject::fixed_id) has the same
-// text every time: it is made once per thread. At most kMaxKept texts are kept (a process that
-// makes many samplers starts over).
+// Objects a sampler keeps have text made once per thread, by the same code: an object copied
+// unchanged into every scene (SceneObject::fixed_id) all of it, a copy of a template
+// (SceneObject::template_id) all but its head. Ids are never shared between kept objects, so
+// one table holds both. At most kMaxKept texts are kept (a process that makes many samplers
+// starts over).
 void AppendObject(const lang::SceneObject& o, Out& out) {
-  if (o.fixed_id == 0) return AppendObjectText(o, out);
+  const uint64_t id = o.fixed_id != 0 ? o.fixed_id : o.template_id;
+  if (id == 0) {
+    AppendObjectHead(o, out);
+    AppendObjectTail(o, out);
+    return;
+  }
   constexpr size_t kMaxKept = 4096;
   thread_local std::unordered_map<uint64_t, std::string> texts;
-  auto it = texts.find(o.fixed_id);
+  auto it = texts.find(id);
   if (it == texts.end()) {
     if (texts.size() >= kMaxKept) texts.clear();
     std::string text;
-    AppendObjectText(o, text);
-    it = texts.emplace(o.fixed_id, std::move(text)).first;
+    if (o.fixed_id != 0) AppendObjectHead(o, text);
+    AppendObjectTail(o, text);
+    it = texts.emplace(id, std::move(text)).first;
   }
+  if (o.fixed_id == 0) AppendObjectHead(o, out);
   out += it->second;
 }
 
 void AppendHeader(const sampling::SampledScene& sampled, Out& out) {
   fmt::format_to(std::back_inserter(out),
-                 "{{\"format\":\"prs-scene/1\",\"seed\":{},\"index\":{},\"attempts\":{},"
-                 "\"rejections\":{{",
+                 FMT_COMPILE("{{\"format\":\"prs-scene/1\",\"seed\":{},\"index\":{},"
+                             "\"attempts\":{},\"rejections\":{{"),
                  sampled.seed, sampled.index, sampled.attempts);
   bool first = true;
   for (const auto& [kind, n] : sampled.rejections.by_kind) {
-    fmt::format_to(std::back_inserter(out), "{}\"{}\":{}", first ? "" : ",",
+    fmt::format_to(std::back_inserter(out), FMT_COMPILE("{}\"{}\":{}"), first ? "" : ",",
                    lang::RejectionKindName(kind), n);
     first = false;
   }

@@ -11,6 +11,10 @@ namespace prs::output {
 /// Renders one sampled scene as a single line of JSON (no trailing newline).
 std::string FormatSceneJson(const sampling::SampledScene& sampled);
 
+/// Writes a finite double exactly as fmt's "{}" does (the shortest digits that read back as
+/// the same double) and returns the end; at most 24 characters. The scene writer's numbers.
+char* WriteShortest(double x, char* out);
+
 /// True for the properties §8 writes outside "properties" (position, orientation, width,
 /// length, height, yaw, pitch, roll).
 bool IsCoreProperty(std::string_view name);

@@ -2,11 +2,14 @@
 // floats, escaped and repaired strings, non-finite numbers as null.
 #include "output/scene_json.h"
 
+#include <fmt/format.h>
 #include <gtest/gtest.h>
 
+#include <bit>
 #include <cmath>
 #include <limits>
 #include <nlohmann/json.hpp>
+#include <random>
 
 #include "lang/lang.h"
 #include "sampling/sampler.h"
@@ -76,6 +79,31 @@ TEST(SceneJsonTest, NumbersRoundTripExactly) {
   EXPECT_EQ(scene["objects"][0]["position"][0].get<double>(), 0.1 + 0.2);
   EXPECT_EQ(scene["objects"][0]["position"][1].get<double>(), 1e-300);
   EXPECT_TRUE(std::signbit(scene["objects"][0]["position"][2].get<double>()));
+}
+
+// The number writer is fmt's "{}" without fmt's general float writer: every layout (fixed,
+// leading zeros, trailing zeros, exponents of 2 and 3 digits, subnormals) must match fmt's.
+TEST(SceneJsonTest, ShortestNumbersAreFmts) {
+  std::mt19937_64 random(20261126);
+  auto check = [](double x) {
+    char text[32];
+    const std::string mine(text, WriteShortest(x, text));
+    ASSERT_EQ(mine, fmt::format("{}", x)) << "bits " << std::bit_cast<uint64_t>(x);
+  };
+  for (int i = 0; i < 1'000'000; ++i) {
+    const double any = std::bit_cast<double>(random());
+    if (std::isfinite(any)) check(any);
+    check(std::uniform_real_distribution<double>(-10, 10)(random));
+    check(std::ldexp(double(random() >> 11), int(random() % 140) - 70));  // wide exponents
+  }
+  for (int e = -330; e <= 308; ++e) {  // either side of every power of ten
+    const double p = std::pow(10.0, e);
+    for (double x : {p, std::nextafter(p, 0.0), std::nextafter(p, HUGE_VAL), 1.5 * p, -p}) check(x);
+  }
+  for (double x : {0.0, -0.0, 5e-324, -5e-324, 2.2250738585072014e-308, 1.7976931348623157e308,
+                   0.1, 0.3, 1e15, 1e16, 123456789012345678.0, 0.0001, 0.00001}) {
+    check(x);
+  }
 }
 
 // Objects a sampler copies into every scene are written from text made once per thread
