@@ -86,9 +86,12 @@ extern "C" int LLVMFuzzerTestOneInput(const uint8_t* data, size_t size) {
   run.limits.max_loop_iterations = 2'000;
   run.limits.max_call_depth = 20;
   run.limits.max_objects = 30;
+  // The second attempt keeps work from the first (templates, shared modules, kept regions) as
+  // a sampler does; the last uses the naive mode so its checks are fuzzed too.
+  auto cache = prs::lang::MakeRunCache();
   for (uint64_t attempt = 0; attempt < 3; ++attempt) {
-    // The last attempt uses the naive mode so its checks are fuzzed too.
     run.mode = attempt == 2 ? prs::lang::SamplingMode::kNaive : prs::lang::SamplingMode::kRegion;
+    run.cache = attempt == 2 ? nullptr : cache.get();
     prs::geometry::Rng rng(/*seed=*/7, /*stream=*/attempt);
     try {
       auto result = prs::lang::RunAttempt(*program, rng, run);

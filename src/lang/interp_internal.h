@@ -225,7 +225,9 @@ class Interpreter {
 
   // --- placement (placement.cc) ---
   Eigen::Vector3d PlacePosition(const ObjectPlan& plan, int index, SourceSpan span);
-  geometry::ConvexRegion ErodeWorkspace(const geometry::ConvexRegion& workspace, int index);
+  // The workspace eroded by the object's box: the kept one, or one made in `storage`.
+  const geometry::ConvexRegion& ErodeWorkspace(const geometry::ConvexRegion& workspace, int index,
+                                               geometry::ConvexRegion& storage);
   // PlacePosition with draws named after "position"; sets p_WO (objects.cc).
   Eigen::Vector3d PlaceObject(const ObjectPlan& plan, int index, SourceSpan span);
   PositionConstraint EvalPositionConstraint(const Specifier& s, int index,
@@ -290,6 +292,14 @@ class Interpreter {
   void StoreTemplate(const ObjectPlan& plan, int index, int64_t effects);
   Value CreateFromTemplate(const ObjectPlan& plan, const RunCache::ObjectTemplate& kept,
                            SourceSpan span);
+  // An object `on` or `completely on` (its one position specifier) another: drawn from the
+  // region made for the target at the origin and moved to it, when that region moved lies
+  // inside the workspace; else nothing, and the general path places it. Kept for copies of
+  // templates on copies of templates; made anew otherwise, so a cache changes no result.
+  std::optional<Eigen::Vector3d> PlaceOnMovedRegion(const ObjectPlan& plan, int index,
+                                                    SourceSpan span);
+  std::shared_ptr<const OnKeptPlacement> MakeOnKeptPlacement(const Specifier& s, int index,
+                                                             int target);
   Eigen::Vector3d SampleNaive(const std::vector<PositionConstraint>& constraints, int index,
                               SourceSpan span);
   // Why no position fits: the empty specifier with the sizes involved, or every region.

@@ -136,6 +136,12 @@ struct RunOptions {
   /// empty region, the span of the specifier that emptied it), which only the first of each
   /// is kept for. Optional; never changes which attempts are rejected.
   const std::set<std::pair<RejectionKind, std::string>>* explained = nullptr;
+  /// An object whose one position specifier is `on` or `completely on` another is drawn from
+  /// the region made for the target at the world origin and moved to it (exact, and kept
+  /// between scenes for templates; placement_fixed.cc). False: from the region made at the
+  /// target, as any other object; the same law, with positions that differ in their last bits.
+  /// For tests.
+  bool move_on_regions = true;
 };
 
 /// The outcome of one attempt: a scene, or the reason it was rejected.

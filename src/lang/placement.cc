@@ -56,6 +56,7 @@ Vector3d Interpreter::PlacePosition(const ObjectPlan& plan, int index, SourceSpa
     RegisterFixedSightChecks(plan, index);  // the tests its skipped specifiers would register
     return SampleFixed(*cached, index, span);
   }
+  if (const std::optional<Vector3d> p = PlaceOnMovedRegion(plan, index, span)) return *p;
   if (plan.position_specifiers.empty()) {
     const PropertyDefault* d = plan.cls->FindDefault("position");
     return ToVector(EvalDefault(*d, index), d->expr ? d->expr->span : span, "the default position");
@@ -70,7 +71,10 @@ Vector3d Interpreter::PlacePosition(const ObjectPlan& plan, int index, SourceSpa
   if (options_.mode == SamplingMode::kNaive) return SampleNaive(constraints, index, span);
   ConvexRegion region = ConvexRegion::All();
   const ConvexRegion* workspace = plan.fold_workspace ? Workspace() : nullptr;
-  if (workspace) region = ErodeWorkspace(*workspace, index);
+  if (workspace) {
+    ConvexRegion storage = ConvexRegion::All();
+    region = ErodeWorkspace(*workspace, index, storage);
+  }
   for (const PositionConstraint& c : constraints) {
     if (!c.is_point) region = geometry::Intersect(region, c.region);
   }
@@ -221,17 +225,18 @@ PositionConstraint Interpreter::EvalPositionConstraint(const Specifier& s, int i
 // `on X` / `completely on X`: X's top face (or a planar region) lifted by half the height.
 // The centres where the object's whole box is inside the workspace. A kept workspace eroded by
 // one box (size and orientation) is the same in every scene, so it is made once and kept.
-ConvexRegion Interpreter::ErodeWorkspace(const ConvexRegion& workspace, int index) {
+const ConvexRegion& Interpreter::ErodeWorkspace(const ConvexRegion& workspace, int index,
+                                                ConvexRegion& storage) {
   const geometry::OrientedBox box = BoxOf(index);
-  if (!IsWorkspaceKept()) return geometry::ErodeByBox(workspace, box.R_WB, box.half_extents);
+  if (!IsWorkspaceKept()) return storage = geometry::ErodeByBox(workspace, box.R_WB, box.half_extents);
   RunCache::ErodedKey key{&workspace, {}};  // bit patterns: -0 and 0 stay apart
   std::memcpy(key.second.data(), box.R_WB.data(), 9 * sizeof(double));
   std::memcpy(key.second.data() + 9, box.half_extents.data(), 3 * sizeof(double));
   auto& kept = options_.cache->eroded_workspaces;
   if (auto it = kept.find(key); it != kept.end()) return it->second;
-  ConvexRegion eroded = geometry::ErodeByBox(workspace, box.R_WB, box.half_extents);
-  if (kept.size() < RunCache::kMaxEroded) kept.emplace(key, eroded);
-  return eroded;
+  storage = geometry::ErodeByBox(workspace, box.R_WB, box.half_extents);
+  if (kept.size() >= RunCache::kMaxEroded) return storage;
+  return kept.emplace(key, storage).first->second;
 }
 
 PositionConstraint Interpreter::EvalOnConstraint(const Specifier& s, int index, bool completely,

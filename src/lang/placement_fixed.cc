@@ -209,4 +209,76 @@ Value Interpreter::CreateFromTemplate(const ObjectPlan& plan, const RunCache::Ob
   return ObjectRef{index};
 }
 
+std::optional<Vector3d> Interpreter::PlaceOnMovedRegion(const ObjectPlan& plan, int index,
+                                                         SourceSpan span) {
+  if (!options_.move_on_regions || options_.mode != SamplingMode::kRegion || plan.region_fixed ||
+      plan.open_turn != ObjectPlan::OpenTurn::kNone || plan.position_specifiers.size() != 1) {
+    return std::nullopt;
+  }
+  const Specifier& s = *plan.position_specifiers.front();
+  // A name only: evaluating it has no effect, so the general path may evaluate it again.
+  if ((s.kind != SpecifierKind::kOn && s.kind != SpecifierKind::kCompletelyOn) ||
+      !std::holds_alternative<NameRef>(s.target->node) || scene_.objects[index].mesh) {
+    return std::nullopt;
+  }
+  const Value target = Eval(*s.target);
+  const ObjectRef* ref = std::get_if<ObjectRef>(&target.data);
+  if (!ref || ref->index == index || scene_.objects[ref->index].mesh) return std::nullopt;
+  const SceneObject& x = scene_.objects[ref->index];
+  // Both boxes the same in every scene: the region at the origin is kept (RunCache::on_kept).
+  std::shared_ptr<const OnKeptPlacement> placement;
+  if (options_.cache && plan.template_fixed && x.template_id != 0) {
+    auto& kept = options_.cache->on_kept;
+    auto it = kept.find({&plan, x.template_id});
+    if (it == kept.end()) {
+      it = kept.emplace(std::pair(&plan, x.template_id), MakeOnKeptPlacement(s, index, ref->index))
+               .first;
+    }
+    placement = it->second;
+  } else {
+    placement = MakeOnKeptPlacement(s, index, ref->index);
+  }
+  if (!placement) return std::nullopt;
+  const Vector3d p_WX = x.p_WO;
+  std::vector<Vector3d> vertices_W = placement->vertices_L;
+  for (Vector3d& v : vertices_W) v += p_WX;
+  // Inside the region the general path intersects with (the workspace, eroded by the box when
+  // it is folded in), the region moved is the whole position region.
+  if (const ConvexRegion* workspace = Workspace()) {
+    ConvexRegion storage = ConvexRegion::All();
+    const ConvexRegion& bound = plan.fold_workspace ? ErodeWorkspace(*workspace, index, storage)
+                                                    : *workspace;
+    if (!bound.ContainsAll(vertices_W, 0)) return std::nullopt;
+  }
+  if (options_.record_regions) {
+    RecordRegion(index, "position", {placement->region_L},
+                 Eigen::Isometry3d(Eigen::Translation3d(p_WX)));
+  }
+  return DrawPosition(placement->sampler, index, span) + p_WX;
+}
+
+// The region of centres for the target moved to the world origin: the same for every copy of
+// the target's template, so samples moved by the target's position are uniform in the region
+// for that copy. Made by the general code, with the target's position set aside meanwhile.
+std::shared_ptr<const OnKeptPlacement> Interpreter::MakeOnKeptPlacement(const Specifier& s,
+                                                                        int index, int target) {
+  struct MovedToOrigin {
+    SceneObject& x;
+    Vector3d p_saved;
+    ~MovedToOrigin() { x.p_WO = p_saved; }
+  } moved{scene_.objects[target], scene_.objects[target].p_WO};
+  moved.x.p_WO.setZero();
+  const PositionConstraint c = EvalPositionConstraint(s, index, ObjectPlan::OpenTurn::kNone);
+  if (c.is_point || c.pieces || c.box_region || !c.region.balls().empty() || c.region.IsEmpty() ||
+      !c.region.IsBounded()) {
+    return nullptr;  // the general path places (or rejects) it
+  }
+  try {
+    return std::make_shared<const OnKeptPlacement>(
+        OnKeptPlacement{c.region, c.region.CalcVertices(), geometry::RegionSampler(c.region)});
+  } catch (const std::domain_error&) {
+    return nullptr;
+  }
+}
+
 }  // namespace prs::lang::internal

@@ -11,6 +11,7 @@
 #include <string>
 #include <tuple>
 #include <unordered_map>
+#include <vector>
 
 #include "geometry/sampling.h"
 #include "geometry/union.h"
@@ -26,6 +27,15 @@ namespace prs::lang {
 /// (every piece's sampler built, so the placement may be read by any thread).
 struct FixedPlacement {
   geometry::UnionSampler sampler;
+};
+
+/// `on` / `completely on` an object: the region of centres for the target moved to the world
+/// origin (frame L), its vertices and its sampler. Where the region moved to the target lies
+/// inside the workspace, it is the whole position region (placement_fixed.cc).
+struct OnKeptPlacement {
+  geometry::ConvexRegion region_L;
+  std::vector<Eigen::Vector3d> vertices_L;
+  geometry::RegionSampler sampler;
 };
 
 class RunCache {
@@ -53,6 +63,11 @@ class RunCache {
   using ErodedKey = std::pair<const geometry::ConvexRegion*, std::array<uint64_t, 12>>;
   static constexpr size_t kMaxEroded = 256;
   std::map<ErodedKey, geometry::ConvexRegion> eroded_workspaces;
+  /// For copies of templates (ObjectPlan::template_fixed) on copies of templates, by creation
+  /// site and the target's SceneObject::template_id; null when the region cannot be used so
+  /// (empty, unbounded, with balls).
+  std::map<std::pair<const ObjectPlan*, uint64_t>, std::shared_ptr<const OnKeptPlacement>>
+      on_kept;
   /// Collision shapes of meshes (by mesh and scale) and of boxes that meet a mesh (by size).
   std::map<std::tuple<const shapes::MeshShape*, double, double, double>,
            std::shared_ptr<const shapes::Collider>> colliders;

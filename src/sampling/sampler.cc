@@ -74,7 +74,7 @@ SampledScene SceneSampler::Sample(uint64_t seed, uint64_t index) {
   result.index = index;
   geometry::Rng rng(seed, index);
   lang::RunOptions run = options_.run;
-  run.cache = cache_.get();
+  run.cache = options_.use_run_cache ? cache_.get() : nullptr;
   const AttemptPoints* points = options_.points;
   std::vector<double> u(points ? points->dimension() : 0);
   std::set<std::pair<lang::RejectionKind, std::string>> explained;

@@ -43,6 +43,9 @@ struct SampleOptions {
   LiveCounts* live = nullptr;  // optional; must outlive the samplers
   /// Optional; must outlive the samplers. Without it every attempt reads the stream.
   const AttemptPoints* points = nullptr;
+  /// False: every attempt starts from nothing, no work kept between scenes (lang::RunCache).
+  /// Slower, and the same scenes: for tests of the caches.
+  bool use_run_cache = true;
 };
 
 /// Rejections of one scene (or many), keyed by (kind, culprit).

@@ -107,7 +107,8 @@ TEST(SceneJsonTest, ShortestNumbersAreFmts) {
 }
 
 // Objects a sampler copies into every scene are written from text made once per thread
-// (SceneObject::fixed_id): the lines must be those written field by field, also with two
+// (SceneObject::fixed_id), and copies of templates from their head and a tail made once
+// (SceneObject::template_id): the lines must be those written field by field, also with two
 // programs of the same layout but different properties sampled in turn on one thread.
 TEST(SceneJsonTest, KeptObjectsAreWrittenAsTheirFieldsSay) {
   auto compile = [](const std::string& color) {
@@ -123,19 +124,22 @@ TEST(SceneJsonTest, KeptObjectsAreWrittenAsTheirFieldsSay) {
   };
   auto red = compile("red"), blue = compile("blue");
   sampling::SceneSampler red_sampler(*red), blue_sampler(*blue);
-  int kept = 0;
+  int kept = 0, templates = 0;
   for (uint64_t i = 0; i < 20; ++i) {
     for (sampling::SceneSampler* sampler : {&red_sampler, &blue_sampler}) {
       const sampling::SampledScene sampled = sampler->Sample(1, i);
       sampling::SampledScene plain = sampled;
       for (lang::SceneObject& o : plain.scene.objects) {
         kept += o.fixed_id != 0;
+        templates += o.template_id != 0;
         o.fixed_id = 0;
+        o.template_id = 0;
       }
       EXPECT_EQ(FormatSceneJson(sampled), FormatSceneJson(plain));
     }
   }
-  EXPECT_GE(kept, 38);  // the table of every scene after each sampler's first
+  EXPECT_GE(kept, 38);       // the table of every scene after each sampler's first
+  EXPECT_GE(templates, 38);  // the random box, a copy of its template but for its position
   const json red_scene = json::parse(FormatSceneJson(red_sampler.Sample(1, 99)));
   const json blue_scene = json::parse(FormatSceneJson(blue_sampler.Sample(1, 99)));
   EXPECT_EQ(red_scene["objects"][0]["properties"]["color"], "red");
