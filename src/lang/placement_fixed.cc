@@ -6,6 +6,8 @@
 // per thread and cached (RunCache); building or reusing them consumes the same random draws.
 // Objects that are wholly fixed (ObjectPlan::object_fixed) are likewise built once and copied,
 // and objects fixed but for their position (ObjectPlan::template_fixed) copied, then placed.
+// An object `on` another is drawn from the region made for the target at the origin, moved
+// (PlaceOnMovedRegion), and kept when both are copies of templates.
 #include <algorithm>
 #include <atomic>
 

@@ -1,7 +1,8 @@
 // Writes scenes as spec §8 JSON, keys in the order the spec lists them: objects in creation
 // order, quaternions (w, x, y, z) mapping local to world, yaw/pitch/roll, dimensions, and the
-// other properties in definition order. Written directly with fmt (this is the hot path of
-// `prs sample`); strings that need escaping go through nlohmann-json.
+// other properties in definition order. Written directly (this is the hot path of `prs
+// sample`): numbers from fmt's shortest digits, strings that need escaping through
+// nlohmann-json, and the parts of kept objects that every scene repeats from text made once.
 #include "output/scene_json.h"
 
 #include <fmt/compile.h>
