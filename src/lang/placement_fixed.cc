@@ -264,12 +264,13 @@ std::optional<Vector3d> Interpreter::PlaceOnMovedRegion(const ObjectPlan& plan, 
 // for that copy. Made by the general code, with the target's position set aside meanwhile.
 std::shared_ptr<const OnKeptPlacement> Interpreter::MakeOnKeptPlacement(const Specifier& s,
                                                                         int index, int target) {
-  struct MovedToOrigin {
-    SceneObject& x;
+  struct MovedToOrigin {  // by index: the object list may grow meanwhile
+    std::vector<SceneObject>& objects;
+    int target;
     Vector3d p_saved;
-    ~MovedToOrigin() { x.p_WO = p_saved; }
-  } moved{scene_.objects[target], scene_.objects[target].p_WO};
-  moved.x.p_WO.setZero();
+    ~MovedToOrigin() { objects[target].p_WO = p_saved; }
+  } moved{scene_.objects, target, scene_.objects[target].p_WO};
+  scene_.objects[target].p_WO.setZero();
   const PositionConstraint c = EvalPositionConstraint(s, index, ObjectPlan::OpenTurn::kNone);
   if (c.is_point || c.pieces || c.box_region || !c.region.balls().empty() || c.region.IsEmpty() ||
       !c.region.IsBounded()) {
