@@ -222,7 +222,6 @@ PositionConstraint Interpreter::EvalPositionConstraint(const Specifier& s, int i
   }
 }
 
-// `on X` / `completely on X`: X's top face (or a planar region) lifted by half the height.
 // The centres where the object's whole box is inside the workspace. A kept workspace eroded by
 // one box (size and orientation) is the same in every scene, so it is made once and kept.
 const ConvexRegion& Interpreter::ErodeWorkspace(const ConvexRegion& workspace, int index,
@@ -239,6 +238,7 @@ const ConvexRegion& Interpreter::ErodeWorkspace(const ConvexRegion& workspace, i
   return kept.emplace(key, storage).first->second;
 }
 
+// `on X` / `completely on X`: X's top face (or a planar region) lifted by half the height.
 PositionConstraint Interpreter::EvalOnConstraint(const Specifier& s, int index, bool completely,
                                                  ObjectPlan::OpenTurn open) {
   PositionConstraint c;
