@@ -7,6 +7,8 @@
 #include <Eigen/Geometry>
 #include <fstream>
 #include <sstream>
+#include <string>
+#include <vector>
 
 #include "shapes/collide.h"
 #include "shapes/decompose.h"
@@ -20,6 +22,19 @@ std::string ReadAsset(const std::string& name) {
   std::stringstream text;
   text << in.rdbuf();
   return text.str();
+}
+
+// One collision test per iteration: `a` at each of `poses` in turn against `b` at the origin.
+// Returns how many overlapped.
+int64_t TimeCollisions(benchmark::State& state, const prs::shapes::Collider& a,
+                       const std::vector<Eigen::Isometry3d>& poses, const prs::shapes::Collider& b) {
+  int64_t hits = 0;
+  size_t k = 0;
+  for (auto _ : state) {
+    hits += prs::shapes::DoCollidersOverlap(a, poses[k++ % poses.size()], b,
+                                            Eigen::Isometry3d::Identity());
+  }
+  return hits;
 }
 
 // The mug (~1,100 triangles) against the bowl (~5,000), at poses from near misses to contact:
@@ -36,12 +51,7 @@ void BM_MeshPairCollision(benchmark::State& state) {
     X.translation() = Eigen::Vector3d(0.06 + 0.01 * (k % 16), 0.002 * (k % 5), 0.0);
     poses.push_back(X);
   }
-  int64_t hits = 0;
-  size_t k = 0;
-  for (auto _ : state) {
-    hits += prs::shapes::DoCollidersOverlap(*a, poses[k++ % poses.size()], *b,
-                                            Eigen::Isometry3d::Identity());
-  }
+  const int64_t hits = TimeCollisions(state, *a, poses, *b);
   state.counters["triangles_a"] = static_cast<double>(mug->mesh.triangles.size());
   state.counters["triangles_b"] = static_cast<double>(bowl->mesh.triangles.size());
   state.counters["overlap_fraction"] = static_cast<double>(hits) / state.iterations();
@@ -106,12 +116,7 @@ void BM_SpherePairCollision(benchmark::State& state) {
     X.translation() = Eigen::Vector3d(0.05 + 0.001 * k, 0.05 + 0.0005 * k, 0.01 * (k % 3));
     poses.push_back(X);
   }
-  int64_t hits = 0;
-  size_t k = 0;
-  for (auto _ : state) {
-    hits += prs::shapes::DoCollidersOverlap(*collider, poses[k++ % poses.size()], *collider,
-                                            Eigen::Isometry3d::Identity());
-  }
+  const int64_t hits = TimeCollisions(state, *collider, poses, *collider);
   state.counters["triangles"] = static_cast<double>(ball->mesh.triangles.size());
   state.counters["overlap_fraction"] = static_cast<double>(hits) / state.iterations();
 }

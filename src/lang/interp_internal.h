@@ -37,6 +37,11 @@ struct ModuleEnv {
     return nullptr;
   }
   bool empty() const { return own.empty() && (!shared || shared->empty()); }
+  /// Whether `name` is bound by the shared layer and not by the module itself: its value is
+  /// then the same in every scene and lives as long as the cache.
+  bool IsFromSharedLayer(const std::string& name) const {
+    return shared && shared->count(name) && !own.count(name);
+  }
   /// Every binding, the shared layer's under the module's own.
   Env Flatten() const {
     Env all = shared ? *shared : Env{};

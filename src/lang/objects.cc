@@ -256,9 +256,8 @@ const RegionPtr* Interpreter::FindWorkspace() const {
 // A workspace bound by a shared module (ModuleEnv::shared) is the same region in every scene
 // and lives as long as the cache: what is worked out from it may be kept there.
 bool Interpreter::IsWorkspaceKept() const {
-  const ModuleEnv& env = module_envs_[current_module_];
-  return options_.cache && env.shared && env.shared->count("workspace") &&
-         !env.own.count("workspace");
+  static const std::string kWorkspace = "workspace";
+  return options_.cache && module_envs_[current_module_].IsFromSharedLayer(kWorkspace);
 }
 
 // Every object's whole box inside the workspace (spec §6), checked once the program has run.

@@ -202,13 +202,12 @@ void Interpreter::SetOnMeshSurfaces(PositionConstraint& c, int index, int target
   c.pieces = geometry::RegionUnion(std::make_shared<const geometry::PieceSet>(std::move(pieces_X)), X_WX);
   if (x.primitive) {  // a cylinder's top, or none: a sphere and a capsule have no flat top
     c.pieces_description = "the top of " + x.DisplayName(target) + " (a " + x.mesh->name +
-                           (x.mesh->supports_O.empty() ? ", which has no flat top to stand on)" : ")") +
-                           (completely ? " with room for the whole footprint" : "");
+                           (x.mesh->supports_O.empty() ? ", which has no flat top to stand on)" : ")");
   } else {
     c.pieces_description = "the upward-facing surfaces of " + x.DisplayName(target) + " (its mesh '" +
-                           x.mesh->name + "', " + std::to_string(x.mesh->supports_O.size()) + " pieces)" +
-                           (completely ? " with room for the whole footprint" : "");
+                           x.mesh->name + "', " + std::to_string(x.mesh->supports_O.size()) + " pieces)";
   }
+  if (completely) c.pieces_description += " with room for the whole footprint";
 }
 
 }  // namespace prs::lang::internal
