@@ -89,13 +89,18 @@ void RunShard(const std::string& dir, uint64_t k, int threads) {
     const std::unique_ptr<lang::CompiledProgram> program = campaign::CompileCampaign(dir, spec);
     std::optional<harness::ControllerFactory> factory;
     if (spec.kind != "sample") factory = ChooseFactory(spec);
+    std::vector<std::string> warnings;
     try {
       py::gil_scoped_release release;
-      campaign::RunShard(dir, spec, *program, k, factory ? &*factory : nullptr, threads, nullptr);
+      campaign::RunShard(dir, spec, *program, k, factory ? &*factory : nullptr, threads, nullptr,
+                         [&](const std::string& warning) { warnings.push_back(warning); });
     } catch (const lang::ScenarioError& error) {
       RaiseScenarioError(error.diagnostic(), program->sources,
                          lang::RenderDiagnostic(error.diagnostic(), program->sources));
     }
+    // Each distinct warning of the shard's episodes, as a Python warning (the GIL is held).
+    const py::object warn = py::module_::import("warnings").attr("warn");
+    for (const std::string& warning : warnings) warn(warning);
   });
 }
 

@@ -296,7 +296,8 @@ void WriteShard(const std::string& dir, const CampaignSpec& spec, uint64_t k,
 void RunShard(const std::string& dir, const CampaignSpec& spec,
               const lang::CompiledProgram& program, uint64_t k,
               const harness::ControllerFactory* factory, int threads,
-              const std::atomic<bool>* cancel) {
+              const std::atomic<bool>* cancel,
+              const std::function<void(const std::string&)>& on_warning) {
   if (k >= spec.shards()) {
     throw CampaignError(
         fmt::format("there is no shard {}: the campaign has shards 0 to {}", k, spec.shards() - 1));
@@ -305,7 +306,7 @@ void RunShard(const std::string& dir, const CampaignSpec& spec,
   std::vector<std::string> lines;
   if (spec.kind != "sample" && !factory) throw std::invalid_argument("RunShard: no controller");
   if (spec.kind == "search") {
-    lines = RunSearchShard(dir, spec, program, k, *factory, threads, cancel);
+    lines = RunSearchShard(dir, spec, program, k, *factory, threads, cancel, on_warning);
   } else if (spec.kind == "test") {
     harness::RunOptions run;
     run.sample = sample;
@@ -315,6 +316,7 @@ void RunShard(const std::string& dir, const CampaignSpec& spec,
     run.threads = threads;
     run.scenario_args = spec.scenario_words;
     run.cancel = cancel;
+    run.on_warning = on_warning;
     run.on_record = [&](const harness::EpisodeRecord& r) {
       lines.push_back(harness::FormatRecordJson(r));
     };

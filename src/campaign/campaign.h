@@ -7,6 +7,7 @@
 
 #include <atomic>
 #include <cstdint>
+#include <functional>
 #include <memory>
 #include <optional>
 #include <stdexcept>
@@ -96,11 +97,13 @@ void WriteShard(const std::string& dir, const CampaignSpec& spec, uint64_t k,
 /// episodes (kind "search", from its generation's plan: search_campaign.h) of its range, on
 /// `threads` threads, and writes it. Throws CampaignError for a shard index out of range or a
 /// search generation that cannot start yet, and what harness::RunEpisodes /
-/// sampling::SampleBatch throw.
+/// sampling::SampleBatch throw. `on_warning` gets each distinct warning of the episodes once
+/// (harness::RunOptions::on_warning).
 void RunShard(const std::string& dir, const CampaignSpec& spec,
               const lang::CompiledProgram& program, uint64_t k,
               const harness::ControllerFactory* factory, int threads,
-              const std::atomic<bool>* cancel);
+              const std::atomic<bool>* cancel,
+              const std::function<void(const std::string&)>& on_warning = nullptr);
 
 /// The lines of every done shard in index order. Throws CampaignError naming the shards that
 /// are not done, unless `partial` (then those are skipped and listed in *skipped).

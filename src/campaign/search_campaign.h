@@ -8,6 +8,7 @@
 
 #include <atomic>
 #include <cstdint>
+#include <functional>
 #include <optional>
 #include <string>
 #include <vector>
@@ -48,6 +49,7 @@ SearchStep PlanSearchStep(const std::string& dir, const CampaignSpec& spec,
 std::vector<std::string> RunSearchShard(const std::string& dir, const CampaignSpec& spec,
                                         const lang::CompiledProgram& program, uint64_t k,
                                         const harness::ControllerFactory& factory, int threads,
-                                        const std::atomic<bool>* cancel);
+                                        const std::atomic<bool>* cancel,
+                                        const std::function<void(const std::string&)>& on_warning);
 
 }  // namespace prs::campaign

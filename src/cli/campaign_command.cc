@@ -119,7 +119,8 @@ int RunShardCommand(const CampaignArgs& args) {
       if (!factory) return kExitUsage;
     }
     campaign::RunShard(args.dir, spec, *program, static_cast<uint64_t>(args.shard),
-                       factory ? &*factory : nullptr, args.sampling.threads, &interrupt.flag());
+                       factory ? &*factory : nullptr, args.sampling.threads, &interrupt.flag(),
+                       WarnOnce());
     return kExitSuccess;
   } catch (const campaign::CampaignError& error) {
     PrintError(error.what());

@@ -200,6 +200,14 @@ void PrintError(std::string_view message) { std::cerr << "prs: error: " << messa
 
 void PrintNote(std::string_view message) { std::cerr << "prs: " << message << '\n'; }
 
+void PrintWarning(std::string_view message) { std::cerr << "prs: warning: " << message << '\n'; }
+
+void WarnOnce::operator()(const std::string& warning) {
+  if (!printed_->insert(warning).second) return;
+  if (before_) before_();
+  PrintWarning(warning);
+}
+
 bool IsStderrTerminal() { return ::isatty(STDERR_FILENO) == 1; }
 
 bool IsStdoutTerminal() { return ::isatty(STDOUT_FILENO) == 1; }

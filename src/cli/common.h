@@ -5,8 +5,10 @@
 #include <CLI/CLI.hpp>
 #include <atomic>
 #include <cstdint>
+#include <functional>
 #include <memory>
 #include <optional>
+#include <set>
 #include <string>
 #include <string_view>
 #include <vector>
@@ -88,6 +90,21 @@ std::string FormatCount(int64_t n, std::string_view noun);
 void PrintError(std::string_view message);
 /// Prints `prs: MESSAGE` on stderr.
 void PrintNote(std::string_view message);
+/// Prints `prs: warning: MESSAGE` on stderr.
+void PrintWarning(std::string_view message);
+
+/// Prints each distinct warning once per command, however many episodes, generations or runs
+/// report it (harness::RunOptions::on_warning). `before` runs first (to erase a progress bar).
+/// Copies share what was printed (a search copies its options for each generation).
+class WarnOnce {
+ public:
+  explicit WarnOnce(std::function<void()> before = {}) : before_(std::move(before)) {}
+  void operator()(const std::string& warning);
+
+ private:
+  std::function<void()> before_;
+  std::shared_ptr<std::set<std::string>> printed_ = std::make_shared<std::set<std::string>>();
+};
 
 /// True when stderr is a terminal (then diagnostics are coloured unless NO_COLOR is set).
 bool IsStderrTerminal();

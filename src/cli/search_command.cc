@@ -56,6 +56,7 @@ int RunAndReport(const lang::CompiledProgram& program, const harness::Controller
     if (records) records->AddLine(harness::FormatRecordJson(record));
     progress.Update(++done);
   };
+  options.run.on_warning = WarnOnce([&] { progress.Erase(); });
   try {
     const search::SearchSummary summary = search::RunSearch(program, factory, options);
     if (records) records->Commit();

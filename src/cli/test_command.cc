@@ -86,6 +86,7 @@ int RunAndReport(const lang::CompiledProgram& program, const harness::Controller
     if (records) records->AddLine(harness::FormatRecordJson(record));
     progress.Update(++done);
   };
+  options.on_warning = WarnOnce([&] { progress.Erase(); });
   const auto begin = std::chrono::steady_clock::now();
   try {
     if (!PrepareDesign(args.design, program, args.range, options.sample, &design)) return kExitUsage;

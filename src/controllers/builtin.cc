@@ -2,8 +2,10 @@
 // interface, so that src/sim and src/harness need not know each other.
 #include "controllers/builtin.h"
 
+#include <algorithm>
 #include <mutex>
 
+#include "export/export.h"
 #include "harness/exec_controller.h"
 #include "harness/registry.h"
 #include "sim/table_cube_controller.h"
@@ -18,17 +20,47 @@ class TableCubeEpisodes : public harness::Controller {
   explicit TableCubeEpisodes(sim::TableCubeOptions options = {}) : controller_(options) {}
   harness::EpisodeResult RunEpisode(const sampling::SampledScene& scene,
                                     const std::string& /*scene_json*/) override {
-    const sim::TaskOutcome outcome = controller_.Run(scene.scene);
+    sim::TaskOutcome outcome = controller_.Run(scene.scene);
     nlohmann::json extra = nlohmann::json::object();
     for (const auto& [name, value] : outcome.metrics) extra[name] = value;
-    return {outcome.outcome, outcome.detail, std::move(extra)};
+    for (const auto& [name, value] : outcome.flags) extra[name] = value;
+    harness::EpisodeResult result{outcome.outcome, outcome.detail, std::move(extra)};
+    result.warnings = std::move(outcome.warnings);
+    return result;
   }
 
  private:
   sim::TableCubeController controller_;
 };
 
+// The user's own controller (--exec) reads the scene as `prs export` writes it, where only
+// objects with a positive mass are free bodies: warn when a scene has none, since a simulated
+// controller can then move nothing.
+class ExecWithSceneCheck : public harness::Controller {
+ public:
+  explicit ExecWithSceneCheck(const harness::ExecOptions& options) : exec_(options) {}
+  harness::EpisodeResult RunEpisode(const sampling::SampledScene& scene,
+                                    const std::string& scene_json) override {
+    harness::EpisodeResult result = exec_.RunEpisode(scene, scene_json);
+    if (!HasFreeBody(scene.scene)) result.warnings.push_back(kNoFreeBodyWarning);
+    return result;
+  }
+
+ private:
+  static bool HasFreeBody(const lang::Scene& scene) {
+    const exporting::ExportScene exported = exporting::MakeExportScene(scene, "");
+    return std::any_of(exported.bodies.begin(), exported.bodies.end(),
+                       [](const exporting::Body& b) { return b.is_free(); });
+  }
+  harness::ExecController exec_;
+};
+
 }  // namespace
+
+const char* const kNoFreeBodyWarning =
+    "a scene has no free body: no object in it has a positive `mass`, so a simulator that loads "
+    "it as `prs export` writes it (docs/export.md) fixes every object in place. Give what the "
+    "controller must move a mass in kilograms (`mass: 0.1` in its class)";
 
 void RegisterBuiltInControllers() {
   static std::once_flag registered;
@@ -38,6 +70,11 @@ void RegisterBuiltInControllers() {
         "the paper's case study in MuJoCo: find the cube in the ceiling camera, pick, hand over, "
         "drop in the right tray",
         [] { return std::make_unique<TableCubeEpisodes>(); });
+    harness::RegisterController(
+        "table-cube-paper",
+        "the original tool's case study in MuJoCo: the cube seen alone by the depth camera, the "
+        "original's motions and its success criterion (within 0.453 m of the tray)",
+        [] { return std::make_unique<TableCubeEpisodes>(sim::MakePaperTableCubeOptions()); });
     harness::RegisterController(
         "table-cube-clear-view",
         "table-cube with the fix of docs/case_study.md: both arms turn away before each picture",
@@ -64,7 +101,7 @@ std::optional<harness::ControllerFactory> MakeControllerFactory(const std::strin
                                                                 const std::atomic<bool>* cancel) {
   if (!exec.empty()) {
     const harness::ExecOptions options{exec, timeout_s, cancel};
-    return [options] { return std::make_unique<harness::ExecController>(options); };
+    return [options] { return std::make_unique<ExecWithSceneCheck>(options); };
   }
   RegisterBuiltInControllers();
   if (const harness::ControllerInfo* info = harness::FindController(name)) return info->factory;

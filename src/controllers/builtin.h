@@ -11,14 +11,19 @@
 
 namespace prs::controllers {
 
-/// Registers `table-cube` (src/sim's case-study controller). Idempotent and thread-safe.
+/// Registers `table-cube`, `table-cube-paper` and `table-cube-clear-view` (src/sim's
+/// case-study controllers). Idempotent and thread-safe.
 void RegisterBuiltInControllers();
+
+/// The warning an --exec episode reports (harness::EpisodeResult::warnings) when its scene has
+/// no free body.
+extern const char* const kNoFreeBodyWarning;
 
 /// Every registered controller's name, comma-separated, after RegisterBuiltInControllers().
 std::string ListControllerNames();
 
 /// The factory of the shell command `exec` (harness::ExecController with `timeout_s` and
-/// `cancel`) when it is not empty, else of the registered controller `name`; nullopt when no
+/// `cancel`, warning with kNoFreeBodyWarning on scenes without a free body) when it is not empty, else of the registered controller `name`; nullopt when no
 /// controller has that name. Registers the built-in controllers first.
 std::optional<harness::ControllerFactory> MakeControllerFactory(const std::string& name,
                                                                 const std::string& exec,

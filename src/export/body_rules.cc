@@ -7,6 +7,7 @@
 #include <algorithm>
 #include <cctype>
 #include <cmath>
+#include <stdexcept>
 
 namespace prs::exporting::internal {
 namespace {
@@ -102,6 +103,8 @@ double ReadFovy(const ObjectFacts& facts, const std::string& label, std::vector<
   return value->As<double>();
 }
 
+}  // namespace
+
 // Principal moments of a solid box, cylinder, sphere or capsule about its centre, in its own
 // axes (a mesh: its box's).
 Eigen::Vector3d CalcInertiaDiag(Shape shape, const Eigen::Vector3d& size, double mass_kg) {
@@ -126,8 +129,6 @@ Eigen::Vector3d CalcInertiaDiag(Shape shape, const Eigen::Vector3d& size, double
   return {mass_kg * (l * l + h * h) / 12, mass_kg * (w * w + h * h) / 12,
           mass_kg * (w * w + l * l) / 12};
 }
-
-}  // namespace
 
 std::string NameTable::MakeUnique(const std::string& wanted) {
   std::string base;
@@ -167,3 +168,35 @@ Body MakeBody(const ObjectFacts& facts, NameTable& names, std::vector<std::strin
 }
 
 }  // namespace prs::exporting::internal
+
+namespace prs::exporting {
+
+double CalcVolume(const Body& body) {
+  const double w = body.size.x(), l = body.size.y(), h = body.size.z();
+  switch (body.shape) {
+    case Shape::kNone: return 0;
+    case Shape::kCylinder: return M_PI * std::pow(body.cylinder_radius(), 2) * h;
+    case Shape::kSphere: return 4.0 / 3 * M_PI * std::pow(w / 2, 3);
+    case Shape::kCapsule: {
+      const double r = w / 2;
+      return M_PI * r * r * (h - w) + 4.0 / 3 * M_PI * r * r * r;
+    }
+    case Shape::kBox:
+    case Shape::kMesh: return w * l * h;
+  }
+  return w * l * h;
+}
+
+void SetMass(Body& body, double mass_kg) {
+  if (!(mass_kg > 0 && std::isfinite(mass_kg))) {
+    throw std::invalid_argument(fmt::format("SetMass: mass {} kg of {} is not a positive number",
+                                            mass_kg, body.name));
+  }
+  if (body.shape == Shape::kNone) {
+    throw std::invalid_argument("SetMass: " + body.name + " is a point and has no volume");
+  }
+  body.mass_kg = mass_kg;
+  body.inertia_diag = internal::CalcInertiaDiag(body.shape, body.size, mass_kg);
+}
+
+}  // namespace prs::exporting

@@ -36,6 +36,10 @@ class NameTable {
   std::set<std::string> taken_;
 };
 
+/// Principal moments of inertia of a solid `shape` of `size` and `mass_kg` about its centre,
+/// in its own axes (a mesh: its bounding box's).
+Eigen::Vector3d CalcInertiaDiag(Shape shape, const Eigen::Vector3d& size, double mass_kg);
+
 /// Applies the rules of docs/export.md; appends a sentence to `warnings` for each property it
 /// cannot read.
 Body MakeBody(const ObjectFacts& facts, NameTable& names, std::vector<std::string>& warnings);

@@ -86,6 +86,15 @@ struct ExportScene {
 /// properties: it falls back to a default and adds a warning.
 ExportScene MakeExportScene(const lang::Scene& scene, std::string title);
 
+/// The volume of the body's solid shape in cubic metres: box, cylinder, sphere and capsule
+/// exactly; a mesh or a built-in shape drawn as a polytope, its bounding box's; a point, 0.
+double CalcVolume(const Body& body);
+
+/// Makes `body` a free body of `mass_kg`, with the inertia the rules give an object of that
+/// `mass` (a solid of its shape). Throws std::invalid_argument when `mass_kg` is not a positive
+/// finite number or the body has no volume (Shape::kNone).
+void SetMass(Body& body, double mass_kg);
+
 /// Reads one line of a scenes file (spec §8, "prs-scene/1") and applies the export rules.
 /// Throws std::invalid_argument with a message naming the missing or malformed field.
 ExportScene ReadSceneJson(std::string_view line);

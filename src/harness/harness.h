@@ -27,6 +27,10 @@ struct EpisodeResult {
   /// Robustness, when the controller reports one: finite, larger is safer, <= 0 should come
   /// with a failing outcome. Failure searches descend it (docs/search.md).
   std::optional<double> score = std::nullopt;
+  /// About the scene or the set-up rather than the controller's behaviour (a pick target that
+  /// had no mass and was given one, a scene with nothing movable), one sentence each. Not part
+  /// of the record: a run reports each distinct one once (RunOptions::on_warning).
+  std::vector<std::string> warnings = {};
 };
 
 /// A robot controller under test. RunEpisodes gives each worker thread its own controller, so
@@ -91,6 +95,9 @@ struct RunOptions {
   FailureHook on_failure;  // optional; only with save_failures_dir
   /// Called on the calling thread with each record, in index order (optional).
   std::function<void(const EpisodeRecord&)> on_record;
+  /// Called on the calling thread once for each distinct EpisodeResult::warnings sentence, at
+  /// the first record that has it, before that record's on_record (optional).
+  std::function<void(const std::string&)> on_warning;
   /// Polled between episodes; once true the run stops with sampling::BatchCancelled.
   const std::atomic<bool>* cancel = nullptr;
   /// Copied into each record drawn at scene coordinates (EpisodeRecord::spec).

@@ -5,6 +5,7 @@
 #include <fstream>
 #include <map>
 #include <mutex>
+#include <set>
 #include <stdexcept>
 
 #include "harness/harness.h"
@@ -138,10 +139,14 @@ RunSummary RunEpisodes(const lang::CompiledProgram& program, const ControllerFac
     finished.emplace(record.index, std::move(record));
   };
   RunSummary summary;
+  std::set<std::string> warned;
   callbacks.consume = [&](sampling::BatchScene&& item) {
     std::unique_lock lock(finished_mutex);
     auto node = finished.extract(item.sampled.index);
     lock.unlock();
+    for (const std::string& warning : node.mapped().result.warnings) {
+      if (warned.insert(warning).second && options.on_warning) options.on_warning(warning);
+    }
     if (options.on_record) options.on_record(node.mapped());
     summary.records.push_back(std::move(node.mapped()));
   };

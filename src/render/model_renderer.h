@@ -28,7 +28,16 @@ class ModelRenderer {
 
   /// What camera `camera_id` of the current model sees in state `data`, rows from the top; `depth` (when not null)
   /// gets the distance along the camera's look axis, +infinity where nothing is seen.
-  Image Render(mjData& data, int camera_id, DepthImage* depth = nullptr);
+  /// With `only_body` >= 0, the geoms of that body alone are drawn, as if nothing else were
+  /// in the world (a simulator's "entity to render" for a vision sensor).
+  Image Render(mjData& data, int camera_id, DepthImage* depth = nullptr, int only_body = -1);
+
+  /// The current model's near and far clipping planes in metres (MuJoCo's, which scale with
+  /// the model's extent): the depth range the camera sees. SetModel first.
+  struct ClippingPlanes {
+    double near_m = 0, far_m = 0;
+  };
+  ClippingPlanes GetClippingPlanes() const;
 
  private:
   struct State;

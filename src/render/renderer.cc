@@ -260,12 +260,33 @@ ModelRenderer::~ModelRenderer() = default;
 
 void ModelRenderer::SetModel(const mjModel& model) { state_->UseModel(model); }
 
-Image ModelRenderer::Render(mjData& data, int camera_id, DepthImage* depth) {
+ModelRenderer::ClippingPlanes ModelRenderer::GetClippingPlanes() const {
+  const mjModel* m = state_->model;
+  if (!m) throw std::logic_error("ModelRenderer::GetClippingPlanes before SetModel");
+  return {m->vis.map.znear * m->stat.extent, m->vis.map.zfar * m->stat.extent};
+}
+
+namespace {
+
+// Drops every drawn geom that is not one of `body`'s own.
+void KeepOnlyBody(const mjModel& model, int body, mjvScene& scene) {
+  int kept = 0;
+  for (int i = 0; i < scene.ngeom; ++i) {
+    const mjvGeom& g = scene.geoms[i];
+    if (g.objtype == mjOBJ_GEOM && model.geom_bodyid[g.objid] == body) scene.geoms[kept++] = g;
+  }
+  scene.ngeom = kept;
+}
+
+}  // namespace
+
+Image ModelRenderer::Render(mjData& data, int camera_id, DepthImage* depth, int only_body) {
   State& s = *state_;
   if (!s.model) throw std::logic_error("ModelRenderer::Render before SetModel");
   internal::EglContext::Scope current(s.egl);
   s.camera.fixedcamid = camera_id;
   mjv_updateScene(s.model, &data, &s.option, nullptr, &s.camera, mjCAT_ALL, &s.scene);
+  if (only_body >= 0) KeepOnlyBody(*s.model, only_body, s.scene);
   const mjrRect viewport = {0, 0, s.width, s.height};
   mjr_render(viewport, &s.scene, &s.context);
   Image image{s.width, s.height, std::vector<uint8_t>(size_t(s.width) * s.height * 3)};
@@ -273,10 +294,9 @@ Image ModelRenderer::Render(mjData& data, int camera_id, DepthImage* depth) {
   mjr_readPixels(image.rgb.data(), depth ? raw_depth.data() : nullptr, viewport, &s.context);
   FlipRows(image.rgb, s.width, s.height, 3);
   if (depth) {
-    // MuJoCo's clipping planes scale with the model's extent.
-    const double extent = s.model->stat.extent;
+    const ClippingPlanes planes = GetClippingPlanes();
     FlipRows(raw_depth, s.width, s.height, 1);
-    LinearizeDepth(raw_depth, s.model->vis.map.znear * extent, s.model->vis.map.zfar * extent);
+    LinearizeDepth(raw_depth, planes.near_m, planes.far_m);
     *depth = DepthImage{s.width, s.height, std::move(raw_depth)};
   }
   return image;

@@ -401,9 +401,13 @@ std::string FormatFailureReport(const std::vector<ReportRecord>& records,
   const int64_t n = static_cast<int64_t>(records.size());
   std::string md = fmt::format("# Failure report: {}\n\n{} episodes; {} failed.\n\n", options.title,
                                n, FormatRate(failures, n));
-  md += "| outcome | episodes | share |\n|---|---|---|\n";
+  // The interval is the outcome's probability under the program's law when the records are
+  // i.i.d. scenes (prs test), not when a search chose them.
+  md += "| outcome | episodes | share | 95 % CI (Wilson) |\n|---|---|---|---|\n";
   for (const auto& [name, count] : outcomes) {
-    md += fmt::format("| {} | {} | {:.1f} % |\n", name, count, 100 * Rate(count, n));
+    const auto [lo, hi] = CalcWilsonInterval(count, n);
+    md += fmt::format("| {} | {} | {:.1f} % | {:.1f}–{:.1f} % |\n", name, count,
+                      100 * Rate(count, n), 100 * lo, 100 * hi);
   }
   if (failures == 0 || failures == n) {
     md += fmt::format("\nEvery episode {}: nothing separates failures from successes.\n",

@@ -1,4 +1,5 @@
-// The Table-Cube controller and its outcome classification (see table_cube_controller.h).
+// The Table-Cube controller: the episode's set-up and classification, and the realistic
+// variant's task (see table_cube_controller.h; the original tool's is table_cube_paper.cc).
 #include "sim/table_cube_controller.h"
 
 #include <fmt/format.h>
@@ -11,15 +12,19 @@
 #include "sim/control.h"
 #include "sim/motion.h"
 #include "sim/perception.h"
+#include "sim/table_cube_episode.h"
 
 namespace prs::sim {
+
+using internal::End;
+using internal::Episode;
+using internal::EpisodeEnd;
 
 namespace {
 
 constexpr double kApproachHeight_m = 0.12;  // above the cube before descending
 constexpr double kLiftHeight_m = 0.15;
-constexpr double kMove_s = 1.2;
-constexpr double kDescend_s = 0.8;
+
 // The ready pose turned to face backwards (joint 1 near its limit): the arm no longer reaches
 // over the table.
 PandaJointVector CalcClearViewPose() {
@@ -28,123 +33,51 @@ PandaJointVector CalcClearViewPose() {
   return q;
 }
 
-// Thrown inside an episode to end it with an outcome.
-struct EpisodeEnd {
-  TaskOutcome outcome;
-};
-
-[[noreturn]] void End(std::string outcome, std::string detail) {
-  throw EpisodeEnd{TaskOutcome{std::move(outcome), std::move(detail), {}}};
+void SetAllArms(Episode& ep, const PandaJointVector& q_rad) {
+  for (const WorldArm& arm : ep.world.arms) MoveJointsTo(ep.world, arm, q_rad, internal::kMove_s);
 }
 
-}  // namespace
+// The cube's centre as the camera sees it in its full image, or a perception fault. `metric`
+// names the sighting's error in the outcome's metrics.
+Eigen::Vector3d SeeBlueBlob(Episode& ep, const std::string& when, const std::string& metric) {
+  const TableCubeOptions& options = ep.options;
+  if (options.clear_view_before_sighting) SetAllArms(ep, CalcClearViewPose());
+  render::DepthImage depth;
+  const render::Image image = ep.renderer->Render(*ep.world.data, ep.camera_id, &depth);
+  const PinholeCamera camera =
+      GetMujocoCamera(*ep.world.model, *ep.world.data, ep.camera_id, image.width, image.height);
+  const std::optional<ColorBlob> blob = FindLargestBlob(image, IsBluePixel);
+  if (!blob) End("perception-fault", "no blue blob in the camera image " + when);
+  const double d = MedianDepth(depth, *blob);
+  const Eigen::Vector3d p_top = BackProject(camera, blob->centroid_px, d);
+  const Eigen::Vector3d p_center = p_top - Eigen::Vector3d::UnitZ() * (options.cube_size_m / 2);
+  ep.RecordSightingError(p_center, ep.TrueCubePosition(), metric);
+  if (options.clear_view_before_sighting) SetAllArms(ep, kPandaReadyPose_rad);
+  return p_center;
+}
 
-struct TableCubeController::Episode {
-  const TableCubeOptions& options;
-  World world;
-  render::ModelRenderer* renderer = nullptr;
-  int camera_id = -1;
-  std::string cube = {};  // the cube's body name, for the classification only
-  double last_sighting_error_m = 0;
-  std::vector<std::pair<std::string, double>> metrics = {};
-
-  Eigen::Vector3d TrueCubePosition() const {
-    return Eigen::Map<const Eigen::Vector3d>(world.data->xpos + 3 * world.body(cube));
+const WorldArm& NearestArm(const Episode& ep, const Eigen::Vector3d& p_W,
+                           const WorldArm* except = nullptr) {
+  const WorldArm* best = nullptr;
+  double best_distance = std::numeric_limits<double>::infinity();
+  for (const WorldArm& arm : ep.world.arms) {
+    const double distance = (arm.X_WBase.translation() - p_W).head<2>().norm();
+    if (&arm != except && distance < best_distance) best = &arm, best_distance = distance;
   }
+  if (!best) End("no-path", "no arm is left to reach the cube");
+  return *best;
+}
 
-  // The cube's centre as the camera sees it, or a perception fault. `metric` names the
-  // sighting's error in the outcome's metrics.
-  Eigen::Vector3d See(const std::string& when, const std::string& metric) {
-    if (options.clear_view_before_sighting) SetAllArms(CalcClearViewPose());
-    render::DepthImage depth;
-    const render::Image image = renderer->Render(*world.data, camera_id, &depth);
-    const PinholeCamera camera = GetMujocoCamera(*world.model, *world.data, camera_id, image.width, image.height);
-    const std::optional<ColorBlob> blob = FindLargestBlob(image, IsBluePixel);
-    if (!blob) End("perception-fault", "no blue blob in the camera image " + when);
-    const double d = MedianDepth(depth, *blob);
-    const Eigen::Vector3d p_top = BackProject(camera, blob->centroid_px, d);
-    const Eigen::Vector3d p_center = p_top - Eigen::Vector3d::UnitZ() * (options.cube_size_m / 2);
-    last_sighting_error_m = (p_center - TrueCubePosition()).norm();
-    metrics.emplace_back(metric, last_sighting_error_m);
-    if (options.clear_view_before_sighting) SetAllArms(kPandaReadyPose_rad);
-    return p_center;
-  }
-
-  void SetAllArms(const PandaJointVector& q_rad) {
-    for (const WorldArm& arm : world.arms) MoveJointsTo(world, arm, q_rad, kMove_s);
-  }
-
-  // A failure of the arm is the camera's fault when the cube was not where it was seen.
-  [[noreturn]] void FailAfterSighting(std::string outcome, std::string detail) {
-    if (last_sighting_error_m > options.perception_tolerance_m) {
-      End("perception-fault",
-          fmt::format("the cube was seen {:.1f} cm from where it was (hidden or partly out of view), "
-                      "so {}", 100 * last_sighting_error_m, detail));
-    }
-    End(std::move(outcome), std::move(detail));
-  }
-
-  const WorldArm& NearestArm(const Eigen::Vector3d& p_W, const WorldArm* except = nullptr) const {
-    const WorldArm* best = nullptr;
-    double best_distance = std::numeric_limits<double>::infinity();
-    for (const WorldArm& arm : world.arms) {
-      const double distance = (arm.X_WBase.translation() - p_W).head<2>().norm();
-      if (&arm != except && distance < best_distance) best = &arm, best_distance = distance;
-    }
-    if (!best) End("no-path", "no arm is left to reach the cube");
-    return *best;
-  }
-
-  // Joint angles for every waypoint at one grasp yaw, or a no-path ending naming the first
-  // waypoint no joint angles were found for.
-  TcpPlan PlanOrFail(const WorldArm& arm, const std::vector<TcpWaypoint>& waypoints) {
-    TcpPlan plan = PlanDownwardPath(world, arm, waypoints);
-    if (plan.failed >= 0) {
-      FailAfterSighting("no-path", fmt::format("{} found no joint angles to {} ({:.1f} cm short)",
-                                               arm.robot_name, waypoints[plan.failed].what,
-                                               100 * plan.failure.position_error_m));
-    }
-    return plan;
-  }
-
-  // Above the cube, down to it, grip, and lift: planned together, so the grasp's yaw is one
-  // that reaches all three (any quarter turn grips a cube the same way).
-  void Pick(const WorldArm& arm, const Eigen::Vector3d& p_cube) {
-    const double z_before = TrueCubePosition().z();
-    const TcpPlan plan = PlanOrFail(arm, {{p_cube + Eigen::Vector3d(0, 0, kApproachHeight_m), "above the cube"},
-                                          {p_cube, "the cube"},
-                                          {p_cube + Eigen::Vector3d(0, 0, kLiftHeight_m), "lift the cube"}});
-    MoveJointsTo(world, arm, plan.q[0], kMove_s);
-    MoveJointsTo(world, arm, plan.q[1], kDescend_s);
-    MoveGripper(world, arm, 0.0);
-    MoveJointsTo(world, arm, plan.q[2], kDescend_s);
-    const double lifted = TrueCubePosition().z() - z_before;
-    if (lifted < kLiftHeight_m / 2) {
-      FailAfterSighting("poor-grip", fmt::format("{} closed on the cube but lifted it only {:.1f} cm",
-                                                 arm.robot_name, 100 * lifted));
-    }
-  }
-
-  void Release(const WorldArm& arm, const Eigen::Vector3d& p_W) {
-    const TcpPlan plan = PlanOrFail(arm, {{p_W + Eigen::Vector3d(0, 0, 0.1), "the put-down point"},
-                                          {p_W, "the put-down point"},
-                                          {p_W + Eigen::Vector3d(0, 0, 0.15), "away from the cube"}});
-    MoveJointsTo(world, arm, plan.q[0], kMove_s);
-    MoveJointsTo(world, arm, plan.q[1], kDescend_s);
-    MoveGripper(world, arm, kPandaFingerTravel_m);
-    MoveJointsTo(world, arm, plan.q[2], kDescend_s);
-    MoveJointsTo(world, arm, kPandaReadyPose_rad, kMove_s);  // out of the camera's way
-  }
-
-  void MoveAboveOrFail(const WorldArm& arm, const Eigen::Vector3d& p_W, const std::string& what) {
-    MoveJointsTo(world, arm, PlanOrFail(arm, {{p_W, what}}).q[0], kMove_s);
-  }
-};
-
-TableCubeController::TableCubeController(TableCubeOptions options) : options_(options) {}
-TableCubeController::~TableCubeController() = default;
-
-namespace {
+void Release(Episode& ep, const WorldArm& arm, const Eigen::Vector3d& p_W) {
+  const TcpPlan plan = ep.PlanOrFail(arm, {{p_W + Eigen::Vector3d(0, 0, 0.1), "the put-down point"},
+                                           {p_W, "the put-down point"},
+                                           {p_W + Eigen::Vector3d(0, 0, 0.15), "away from the cube"}});
+  MoveJointsTo(ep.world, arm, plan.q[0], internal::kMove_s);
+  MoveJointsTo(ep.world, arm, plan.q[1], internal::kDescend_s);
+  MoveGripper(ep.world, arm, kPandaFingerTravel_m);
+  MoveJointsTo(ep.world, arm, plan.q[2], internal::kDescend_s);
+  MoveJointsTo(ep.world, arm, kPandaReadyPose_rad, internal::kMove_s);  // out of the camera's way
+}
 
 const exporting::Body* FindNearest(const exporting::ExportScene& scene, const std::string& class_name,
                                    const Eigen::Vector3d& p_W) {
@@ -169,19 +102,85 @@ Eigen::Vector3d CalcHandoverPoint(const World& world, double cube_size_m) {
   return p;
 }
 
-// The cube rests inside the tray: within its footprint, and below its walls' tops.
-bool IsInTray(const exporting::Body& tray, const Eigen::Vector3d& p_cube_W) {
-  const Eigen::Vector3d p_T = tray.R_WO.inverse() * (p_cube_W - tray.p_WO);
-  return std::abs(p_T.x()) <= tray.size.x() / 2 && std::abs(p_T.y()) <= tray.size.y() / 2 &&
-         p_T.z() > tray.size.z() / 2 && p_T.z() < tray.size.z() / 2 + kTrayWallHeight_m + 0.03;
+void PickCube(Episode& ep, const WorldArm& arm, const Eigen::Vector3d& p_cube) {
+  ep.Pick(arm, p_cube + Eigen::Vector3d(0, 0, kApproachHeight_m), p_cube,
+          p_cube + Eigen::Vector3d(0, 0, kLiftHeight_m));
+}
+
+}  // namespace
+
+namespace internal {
+
+void RunRealisticTask(Episode& ep, TaskOutcome& outcome) {
+  World& world = ep.world;
+  const Eigen::Vector3d p_seen = SeeBlueBlob(ep, "at the start", "sighting_error_start_m");
+  const WorldArm& first = NearestArm(ep, p_seen);
+  PickCube(ep, first, p_seen);
+  const Eigen::Vector3d p_handover = CalcHandoverPoint(world, ep.options.cube_size_m);
+  Release(ep, first, p_handover);
+  const double slip = (ep.TrueCubePosition() - p_handover).head<2>().norm();
+  if (slip > 0.05) {
+    End("poor-grip", fmt::format("the cube came down {:.1f} cm from the hand-over point", 100 * slip));
+  }
+  const Eigen::Vector3d p_seen_again = SeeBlueBlob(ep, "after the hand-over", "sighting_error_handover_m");
+  const WorldArm& second = NearestArm(ep, p_seen_again, &first);
+  PickCube(ep, second, p_seen_again);
+  const exporting::Body* tray = FindNearest(world.scene, "Tray", second.X_WBase.translation());
+  if (!tray) End("missed-tray", "the scene has no tray to drop the cube into");
+  const Eigen::Vector3d p_drop = tray->p_WO + Eigen::Vector3d(0, 0, tray->size.z() / 2 + 0.1);
+  ep.MoveAboveOrFail(second, p_drop, "above the destination tray");
+  MoveGripper(world, second, kPandaFingerTravel_m, 1.0);
+  if (!IsInTray(*tray, ep.TrueCubePosition())) {
+    End("missed-tray", fmt::format("the cube ended outside {} after the drop", tray->name));
+  }
+  outcome.detail = fmt::format("the cube rests in {}", tray->name);
+}
+
+}  // namespace internal
+
+TableCubeOptions MakePaperTableCubeOptions() {
+  TableCubeOptions options;
+  options.variant = TableCubeVariant::kPaper;
+  options.image_width = options.image_height = 256;
+  options.default_fovy_deg = 60;
+  return options;
+}
+
+TableCubeController::TableCubeController(TableCubeOptions options) : options_(options) {}
+TableCubeController::~TableCubeController() = default;
+
+namespace {
+
+// The scene as the simulation builds it: the cube made free if it has no mass (a warning in
+// `warnings`, its mass in `metrics`), a camera without a field of view given the options'.
+exporting::ExportScene PrepareScene(const lang::Scene& scene, const TableCubeOptions& options,
+                                    TaskOutcome& outcome) {
+  exporting::ExportScene exported = exporting::MakeExportScene(scene, "case study");
+  bool cube_seen = false;
+  for (size_t i = 0; i < exported.bodies.size(); ++i) {  // one body per object, in order
+    exporting::Body& body = exported.bodies[i];
+    if (body.class_name == "Camera" && options.default_fovy_deg &&
+        !scene.objects[i].FindProperty("fovy_deg")) {
+      body.fovy_deg = *options.default_fovy_deg;
+    }
+    if (body.class_name != "Cube" || cube_seen) continue;
+    cube_seen = true;
+    if (std::optional<std::string> warning = MakePickTargetFree(body)) {
+      outcome.warnings.push_back(std::move(*warning));
+      outcome.flags.emplace_back("cube_mass_assumed", true);
+    }
+    outcome.metrics.emplace_back("cube_mass_kg", body.mass_kg);
+  }
+  return exported;
 }
 
 }  // namespace
 
 TaskOutcome TableCubeController::Run(const lang::Scene& scene) {
+  TaskOutcome setup;
   std::optional<Episode> episode;
   try {
-    episode.emplace(Episode{options_, BuildWorld(exporting::MakeExportScene(scene, "case study"))});
+    episode.emplace(Episode{options_, BuildWorld(PrepareScene(scene, options_, setup))});
   } catch (const std::exception& e) {
     return {"world-error", e.what(), {}};
   }
@@ -202,36 +201,24 @@ TaskOutcome TableCubeController::Run(const lang::Scene& scene) {
   TaskOutcome outcome{"success", "", {}};
   try {
     SimulateFor(*world.model, *world.data, world.arm_indices(), 0.3);
-    const Eigen::Vector3d p_seen = ep.See("at the start", "sighting_error_start_m");
-    const WorldArm& first = ep.NearestArm(p_seen);
-    ep.Pick(first, p_seen);
-    const Eigen::Vector3d p_handover = CalcHandoverPoint(world, options_.cube_size_m);
-    ep.Release(first, p_handover);
-    const double slip = (ep.TrueCubePosition() - p_handover).head<2>().norm();
-    if (slip > 0.05) {
-      End("poor-grip", fmt::format("the cube came down {:.1f} cm from the hand-over point", 100 * slip));
+    if (options_.variant == TableCubeVariant::kPaper) {
+      internal::RunPaperTask(ep, outcome);
+    } else {
+      internal::RunRealisticTask(ep, outcome);
     }
-    const Eigen::Vector3d p_seen_again = ep.See("after the hand-over", "sighting_error_handover_m");
-    const WorldArm& second = ep.NearestArm(p_seen_again, &first);
-    ep.Pick(second, p_seen_again);
-    const exporting::Body* tray = FindNearest(world.scene, "Tray", second.X_WBase.translation());
-    if (!tray) End("missed-tray", "the scene has no tray to drop the cube into");
-    const Eigen::Vector3d p_drop = tray->p_WO + Eigen::Vector3d(0, 0, tray->size.z() / 2 + 0.1);
-    ep.MoveAboveOrFail(second, p_drop, "above the destination tray");
-    MoveGripper(world, second, kPandaFingerTravel_m, 1.0);
-    if (!IsInTray(*tray, ep.TrueCubePosition())) {
-      End("missed-tray", fmt::format("the cube ended outside {} after the drop", tray->name));
-    }
-    outcome.detail = fmt::format("the cube rests in {}", tray->name);
   } catch (EpisodeEnd& end) {
     outcome = std::move(end.outcome);
   }
-  outcome.metrics = std::move(ep.metrics);
+  outcome.metrics = std::move(setup.metrics);
+  outcome.metrics.insert(outcome.metrics.end(), ep.metrics.begin(), ep.metrics.end());
   const Eigen::Vector3d p_end = ep.TrueCubePosition();
   outcome.metrics.emplace_back("cube_final_x_m", p_end.x());
   outcome.metrics.emplace_back("cube_final_y_m", p_end.y());
   outcome.metrics.emplace_back("cube_final_z_m", p_end.z());
   outcome.metrics.emplace_back("simulated_s", world.data->time);
+  outcome.flags = std::move(setup.flags);
+  outcome.flags.insert(outcome.flags.end(), ep.flags.begin(), ep.flags.end());
+  outcome.warnings = std::move(setup.warnings);
   return outcome;
 }
 

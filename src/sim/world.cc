@@ -77,6 +77,17 @@ Eigen::Isometry3d CalcArmMount(const exporting::Body& robot) {
   return kinematics::CalcArmMount(robot.p_WO, robot.R_WO.toRotationMatrix(), robot.size);
 }
 
+std::optional<std::string> MakePickTargetFree(exporting::Body& body) {
+  if (body.is_free() || body.shape == exporting::Shape::kNone) return std::nullopt;
+  exporting::SetMass(body, kDefaultPickTargetDensity_kg_m3 * exporting::CalcVolume(body));
+  return fmt::format(
+      "{} (a {}) has no mass, so a simulator would fix it in place (docs/export.md) and no arm "
+      "could lift it; the case study simulates it as a free body of density {:g} kg/m^3 "
+      "(MuJoCo's default; each record's extra.cube_mass_kg says how heavy). Give its class a "
+      "mass in kilograms (`mass: 0.1`) to choose one",
+      body.name, body.class_name, kDefaultPickTargetDensity_kg_m3);
+}
+
 std::string WriteWorldMjcf(const exporting::ExportScene& scene) {
   std::string bodies, equalities, actuators;
   for (const exporting::Body& b : scene.bodies) {

@@ -3,6 +3,7 @@
 // every Robot object, and four walls around every Tray, so that "against a tray wall" is physical.
 #pragma once
 
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -50,6 +51,16 @@ Eigen::Isometry3d CalcArmMount(const exporting::Body& robot);
 /// the box (the volume the sampler keeps other objects out of) would enclose the arm's links
 /// and, drawn, hide the arm and, 1 m tall, much of the table from a ceiling camera.
 std::string WriteWorldMjcf(const exporting::ExportScene& scene);
+
+/// The density a pick target without a mass is simulated at: MuJoCo's default for geoms
+/// (water's), so the original tool's 4 cm cube weighs 64 g.
+inline constexpr double kDefaultPickTargetDensity_kg_m3 = 1000;
+
+/// An object a controller must pick up cannot be static. When `body` has no positive mass (so
+/// docs/export.md's rules fix it in the world), makes it a free body of its solid shape at
+/// kDefaultPickTargetDensity_kg_m3 and returns one sentence for the user saying so and how to
+/// choose the mass; otherwise leaves it and returns nullopt. A point (no volume) is left too.
+std::optional<std::string> MakePickTargetFree(exporting::Body& body);
 
 /// Compiles the world and puts each arm in its ready pose. Throws std::runtime_error when
 /// MuJoCo rejects the model.

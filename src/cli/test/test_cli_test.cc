@@ -127,6 +127,43 @@ TEST_F(PrsTestCommandTest, TableCubeControllerRunsTheSameOnOneAndTwoThreads) {
   EXPECT_GE(CountOutcomes(runs[0])["success"], 1) << json(runs[0]).dump();
 }
 
+size_t CountOccurrences(const std::string& text, const std::string& part) {
+  size_t n = 0;
+  for (size_t at = text.find(part); at != std::string::npos; at = text.find(part, at + 1)) ++n;
+  return n;
+}
+
+// The original tool's object model has a Cube without a mass. The case-study controllers give
+// it one and say so once per run, whatever the thread count; the records carry the mass.
+TEST_F(PrsTestCommandTest, AMasslessPickTargetIsWarnedAboutOnceAndPicked) {
+  const Result r = Run({"test", Example("table_cube_paper_model.prs"), "--controller",
+                        "table-cube-paper", "-n", "4", "-s", "1", "--threads", "2", "-o", Path("r.jsonl")});
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  EXPECT_EQ(CountOccurrences(r.err, "prs: warning: Cube_5 (a Cube) has no mass"), 1u) << r.err;
+  const std::vector<json> records = ReadRecords(Path("r.jsonl"));
+  ASSERT_EQ(records.size(), 4u);
+  for (const json& record : records) {
+    EXPECT_EQ(record["extra"]["cube_mass_assumed"], true);
+    EXPECT_NEAR(record["extra"]["cube_mass_kg"].get<double>(), 0.064, 1e-12);
+  }
+  EXPECT_GE(CountOutcomes(records)["success"], 2) << json(records).dump();
+}
+
+// A user's own controller reads the scene as prs export writes it: once per run, prs test
+// warns when a scene has nothing movable (the original model's massless cube), and not when
+// it has (examples/model.prs's cube has a mass).
+TEST_F(PrsTestCommandTest, ExecControllersAreWarnedOfScenesWithoutAFreeBody) {
+  const std::string controller = "echo '{\"outcome\": \"success\"}'";
+  const Result massless = Run({"test", Example("table_cube_paper_model.prs"), "--exec", controller,
+                               "-n", "3", "-s", "1"});
+  ASSERT_EQ(massless.exit_code, 0) << massless.err;
+  EXPECT_EQ(CountOccurrences(massless.err, "prs: warning: a scene has no free body"), 1u)
+      << massless.err;
+  const Result with_mass = Run(TableCube({"--exec", controller, "-n", "3", "-s", "1"}));
+  ASSERT_EQ(with_mass.exit_code, 0) << with_mass.err;
+  EXPECT_EQ(with_mass.err.find("warning"), std::string::npos) << with_mass.err;
+}
+
 TEST_F(PrsTestCommandTest, FailingScenesAreSavedAndTheirCommandRegeneratesThem) {
   const Result r = Run(TableCube({"--controller", "demo-reach", "-n", "20", "-s", "1",
                                   "--save-failures", Path("failures"), "-o", Path("r.jsonl")}));

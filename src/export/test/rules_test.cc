@@ -3,6 +3,8 @@
 #include <gtest/gtest.h>
 
 #include <algorithm>
+#include <cmath>
+#include <stdexcept>
 
 #include "export/test/example_scenes.h"
 #include "output/scene_json.h"
@@ -72,6 +74,35 @@ TEST(RulesTest, ShapeTypeMassAndColourForms) {
   EXPECT_EQ(exported.bodies[1].color.g, 0.0);
   EXPECT_TRUE(exported.bodies[2].is_free());
   EXPECT_TRUE(exported.warnings.empty());
+}
+
+// The original tool's Cube has no mass: static by the rules. SetMass makes it free with the
+// inertia the rules give the same cube with that `mass` written in the program.
+TEST(RulesTest, SetMassGivesTheRulesFreeBody) {
+  const lang::Scene& scene = SampleText(
+      "from paper_model import *\n"
+      "a = Cube at V3D(0, 0, 0.02)\n"
+      "b = Cube at V3D(0.5, 0, 0.02), with mass 0.064\n"
+      "class Can:\n    width: 0.08\n    length: 0.08\n    height: 0.1\n"
+      "    shape_type: \"cylinder\"\n"
+      "c = Can at V3D(1, 0, 0.05)\n");
+  ExportScene exported = MakeExportScene(scene, "t");
+  ASSERT_EQ(exported.bodies.size(), 3u);
+  Body& massless = exported.bodies[0];
+  EXPECT_FALSE(massless.is_free());
+  EXPECT_NEAR(CalcVolume(massless), 0.04 * 0.04 * 0.04, 1e-18);
+  SetMass(massless, 0.064);
+  EXPECT_TRUE(massless.is_free());
+  EXPECT_EQ(massless.mass_kg, exported.bodies[1].mass_kg);
+  EXPECT_EQ(massless.inertia_diag, exported.bodies[1].inertia_diag);
+  EXPECT_NEAR(massless.inertia_diag.x(), 0.064 * 2 * 0.04 * 0.04 / 12, 1e-18);
+  EXPECT_NEAR(CalcVolume(exported.bodies[2]), M_PI * 0.04 * 0.04 * 0.1, 1e-15);  // a cylinder
+  EXPECT_THROW(SetMass(massless, 0), std::invalid_argument);
+  EXPECT_THROW(SetMass(massless, std::nan("")), std::invalid_argument);
+  Body point = exported.bodies[0];
+  point.shape = Shape::kNone;
+  EXPECT_EQ(CalcVolume(point), 0);
+  EXPECT_THROW(SetMass(point, 1), std::invalid_argument);
 }
 
 // Built-in shapes go out natively when round, else as their polytope (a mesh without a file).

@@ -191,6 +191,35 @@ TEST(RunEpisodesTest, FailingScenesAreSavedAndTheHookGetsTheirStems) {
   fs::remove_all(dir);
 }
 
+// Warns about its scene: every odd index "odd scene", index 12 also "twelve"; each distinct
+// sentence reaches on_warning once, at its first record in index order, before that record.
+class WarningController : public Controller {
+ public:
+  EpisodeResult RunEpisode(const sampling::SampledScene& scene, const std::string&) override {
+    EpisodeResult result{"success", ""};
+    if (scene.index % 2 == 1) result.warnings.push_back("odd scene");
+    if (scene.index == 12) result.warnings = {"twelve", "odd scene"};
+    return result;
+  }
+};
+
+TEST(RunEpisodesTest, EachDistinctWarningIsReportedOnceInIndexOrder) {
+  const auto program = CompileTableCube();
+  for (const int threads : {1, 2}) {
+    RunOptions options = MakeOptions(8, threads);  // scenes 10..17
+    std::vector<std::string> events;
+    options.on_warning = [&](const std::string& w) { events.push_back("warning " + w); };
+    options.on_record = [&](const EpisodeRecord& r) {
+      events.push_back("record " + std::to_string(r.index));
+    };
+    RunEpisodes(*program, [] { return std::make_unique<WarningController>(); }, options);
+    const std::vector<std::string> expected = {
+        "record 10", "warning odd scene", "record 11", "warning twelve", "record 12",
+        "record 13", "record 14", "record 15", "record 16", "record 17"};
+    EXPECT_EQ(events, expected) << threads << " threads";
+  }
+}
+
 TEST(TabulateOutcomesTest, SuccessFirstThenByCountAndSharesAddUp) {
   std::vector<EpisodeRecord> records;
   for (const char* outcome :

@@ -3,6 +3,7 @@
 // right, and a malformed results file is a located error.
 #include "search/report.h"
 
+#include <fmt/format.h>
 #include <gtest/gtest.h>
 
 #include <cmath>
@@ -59,6 +60,14 @@ TEST(ReportTest, TheTopSplitNamesThePlantedFeature) {
   EXPECT_NE(md.find("The strongest single split: **"), std::string::npos) << md;
   EXPECT_NE(md.find("≤ -0.74"), std::string::npos) << md;  // the threshold, -0.7498
   EXPECT_NE(md.find("one mode"), std::string::npos) << md;
+  // Each outcome's row carries its Wilson interval.
+  int64_t failures = 0;
+  for (const auto& r : records) failures += r.failed();
+  const auto [lo, hi] = CalcWilsonInterval(failures, 2000);
+  EXPECT_NE(md.find(fmt::format("| no-path | {} | {:.1f} % | {:.1f}–{:.1f} % |", failures,
+                                100.0 * failures / 2000, 100 * lo, 100 * hi)),
+            std::string::npos)
+      << md;
 }
 
 TEST(ReportTest, TwoCausesGiveTwoFailureModes) {

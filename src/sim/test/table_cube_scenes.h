@@ -6,6 +6,9 @@
 #include <gtest/gtest.h>
 
 #include <cstdlib>
+#include <filesystem>
+#include <fstream>
+#include <sstream>
 #include <string>
 
 #include "sampling/sampler.h"
@@ -30,6 +33,30 @@ inline const lang::CompiledProgram& TableCubeProgram() {
 inline const lang::CompiledProgram& PaperModelProgram() {
   static const lang::CompiledProgram* program = CompileExample("table_cube_paper_model.prs");
   return *program;
+}
+
+/// table_cube_paper_model.prs with the original model's Robot box `height_m` tall (the
+/// model's text with that one number changed), compiled; never freed.
+inline const lang::CompiledProgram& PaperModelWithRobotHeight(double height_m) {
+  const char* dir = std::getenv("PRS_SOURCE_DIR");
+  const std::string examples = std::string(dir ? dir : PRS_DEFAULT_SOURCE_DIR) + "/examples/";
+  std::ifstream model_file(examples + "paper_model.prs");
+  std::stringstream model;
+  model << model_file.rdbuf();
+  std::string text = model.str();
+  const std::string original = "height: 1.025562";
+  const size_t at = text.find(original);
+  EXPECT_NE(at, std::string::npos) << "paper_model.prs no longer has " << original;
+  if (at != std::string::npos) text.replace(at, original.size(), "height: " + std::to_string(height_m));
+  const std::string temp = ::testing::TempDir() + "prs_robot_height_" + std::to_string(height_m);
+  std::filesystem::create_directories(temp);
+  std::ofstream(temp + "/paper_model.prs") << text;
+  std::ifstream scenario(examples + "table_cube_paper_model.prs");
+  std::ofstream(temp + "/table_cube_paper_model.prs") << scenario.rdbuf();
+  lang::DiagnosticEngine diagnostics;
+  auto compiled = lang::CompileFile(temp + "/table_cube_paper_model.prs", {}, diagnostics);
+  EXPECT_FALSE(diagnostics.has_errors()) << temp;
+  return *compiled.release();
 }
 
 inline lang::Scene SampleTableCube(uint64_t index) {
