@@ -47,7 +47,7 @@ std::string WriteHand(const PandaNames& n) {
     xml += fmt::format(R"(<body name="{0}_body" pos="0 0 0.0584">)"
                        R"(<joint name="{0}" type="slide" axis="0 {1} 0" range="0 {2}" limited="true" damping="5"/>)"
                        R"(<geom type="box" size="0.01 0.008 0.026" pos="0 {3} 0.026" mass="0.05" )"
-                       R"(friction="2 0.01 0.001" condim="4" rgba="0.2 0.2 0.2 1" {4}/></body>)",
+                       R"(friction="2 0.01 0.001" condim="4" solref="0.004 1" rgba="0.2 0.2 0.2 1" {4}/></body>)",
                        n.finger_joint(side), sign, kPandaFingerTravel_m, sign * 0.008, kArmContact);
   }
   return xml + "</body>";
@@ -80,7 +80,7 @@ std::string WritePandaBody(const PandaNames& n, const Eigen::Vector3d& p_WBase,
 }
 
 std::string WritePandaEqualities(const PandaNames& n) {
-  return fmt::format(R"(<joint joint1="{}" joint2="{}" polycoef="0 1 0 0 0"/>)", n.finger_joint(1),
+  return fmt::format(R"(<joint joint1="{}" joint2="{}" polycoef="0 1 0 0 0" solref="0.004 1"/>)", n.finger_joint(1),
                      n.finger_joint(0));
 }
 

@@ -20,6 +20,7 @@ constexpr double kDropAboveTrays_m = 0.2;     // the first arm opens this high o
 constexpr double kMoveAway_m = 0.45;          // ... then moves this far along −x
 constexpr double kDropAboveTray_m = 0.1;      // the second opens this high over its tray's top
 constexpr double kSuccessReach_m = 0.453;     // success: within this of the tray in x and in y
+constexpr double kHandoverReach_m = 0.1;      // ours: the dropped cube lands within this
 
 // The point on the cube the camera sees (the centre of its top face, seen from above) as the
 // original estimated it, or a perception fault.
@@ -68,16 +69,27 @@ void RunPaperTask(Episode& ep, TaskOutcome& outcome) {
   const WorldArm& second = world.arms[1];
 
   PickSeen(ep, first, SeeCubeAlone(ep, "at the start", "sighting_error_start_m"));
-  Eigen::Vector3d p_drop = (tray_1->p_WO + tray_2->p_WO) / 2 + Eigen::Vector3d(0, 0, kDropAboveTrays_m);
-  ep.MoveAboveOrFail(first, p_drop, "above the trays' midpoint");
+  const Eigen::Vector3d p_release =
+      (tray_1->p_WO + tray_2->p_WO) / 2 + Eigen::Vector3d(0, 0, kDropAboveTrays_m);
+  ep.MoveAboveOrFail(first, p_release, "above the trays' midpoint");
   MoveGripper(world, first, kPandaFingerTravel_m);
-  p_drop.x() -= kMoveAway_m;
-  ep.MoveAboveOrFail(first, p_drop, "away from the trays' midpoint");
-
-  PickSeen(ep, second, SeeCubeAlone(ep, "after the hand-over", "sighting_error_handover_m"));
-  const Eigen::Vector3d p_tray_top = tray_2->p_WO + Eigen::Vector3d(0, 0, tray_2->size.z() / 2);
-  ep.MoveAboveOrFail(second, p_tray_top + Eigen::Vector3d(0, 0, kDropAboveTray_m),
-                     "above the destination tray");
+  ep.MoveAboveOrFail(first, p_release - Eigen::Vector3d(kMoveAway_m, 0, 0),
+                     "away from the trays' midpoint");
+  // A cube that slipped out on the way, or bounced far, was not handed over well: when the
+  // second arm then fails, the failure is the first grip's (the original went on regardless).
+  const double landed_m = (ep.TrueCubePosition() - p_release).head<2>().norm();
+  ep.metrics.emplace_back("handover_offset_m", landed_m);
+  try {
+    PickSeen(ep, second, SeeCubeAlone(ep, "after the hand-over", "sighting_error_handover_m"));
+    const Eigen::Vector3d p_tray_top = tray_2->p_WO + Eigen::Vector3d(0, 0, tray_2->size.z() / 2);
+    ep.MoveAboveOrFail(second, p_tray_top + Eigen::Vector3d(0, 0, kDropAboveTray_m),
+                       "above the destination tray");
+  } catch (EpisodeEnd& end) {
+    if (landed_m <= kHandoverReach_m) throw;
+    End("poor-grip", fmt::format("the cube came down {:.1f} cm from the trays' midpoint, where {} "
+                                 "let it go, so {}", 100 * landed_m, first.robot_name,
+                                 end.outcome.detail));
+  }
   MoveGripper(world, second, kPandaFingerTravel_m, 1.0);
 
   const Eigen::Vector3d p_cube = ep.TrueCubePosition();
