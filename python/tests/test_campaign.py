@@ -4,6 +4,7 @@ CLI and Python share directories, and bad directories get clear errors."""
 
 import json
 import os
+import warnings
 
 import pytest
 
@@ -102,6 +103,25 @@ def test_a_campaign_made_by_prs_runs_here_without_a_cluster(prs_binary, tmp_path
                      "-s", "4", "-o", str(tmp_path / "single.jsonl"))
     assert records_without_times(tmp_path / "m.jsonl") == \
         records_without_times(tmp_path / "single.jsonl")
+
+
+def test_a_shards_warnings_come_as_python_warnings_once(prs_binary, tmp_path):
+    """The original model's cube has no mass: an --exec shard over it warns, once, that its
+    scenes have no free body; the same shard over table_cube.prs (a cube of 0.1 kg) does not."""
+    for example, warned in (("table_cube_paper_model.prs", True), ("table_cube.prs", False)):
+        camp = tmp_path / example
+        result = run_prs(prs_binary, "campaign", "init", str(camp), str(EXAMPLES / example),
+                         "-n", "3", "--shard-size", "3", "-s", "1", "--exec", "true")
+        assert result.returncode == 0, result.stderr
+        with warnings.catch_warnings(record=True) as caught:
+            warnings.simplefilter("always")
+            campaign.run_shard(str(camp), 0)
+        messages = [str(w.message) for w in caught if issubclass(w.category, UserWarning)]
+        if warned:
+            assert len(messages) == 1 and messages[0].startswith("a scene has no free body"), \
+                messages
+        else:
+            assert messages == [], messages
 
 
 def test_bad_campaigns_and_arguments_are_clear_errors(tmp_path):
