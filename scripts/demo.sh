@@ -55,6 +55,8 @@ Next, try:
    $prs test $spec --exec 'python3 examples/controllers/reach_check.py' -n 100 -s 1
                                 # your own controller: scene JSON in, outcome out (docs/harness.md)
    $prs render $spec --view camera:Camera -o rgb.png   # what the robot's camera sees
+   $prs test examples/table_cube_paper_model.prs --controller table-cube-paper -n 100 -s 1
+                                # the paper's Table III: the original's files and controller
    $prs search $spec --controller planted-1-permille --budget 1000 -o found.jsonl
                                 # search for failures instead of sampling blindly (docs/search.md)
    $prs campaign init camp $spec --controller table-cube -n 2000 --shard-size 100 -s 1
