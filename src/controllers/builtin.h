@@ -23,7 +23,8 @@ extern const char* const kNoFreeBodyWarning;
 std::string ListControllerNames();
 
 /// The factory of the shell command `exec` (harness::ExecController with `timeout_s` and
-/// `cancel`, warning with kNoFreeBodyWarning on scenes without a free body) when it is not empty, else of the registered controller `name`; nullopt when no
+/// `cancel`, warning with kNoFreeBodyWarning on scenes without a free body) when it is not
+/// empty, else of the registered controller `name`; nullopt when no
 /// controller has that name. Registers the built-in controllers first.
 std::optional<harness::ControllerFactory> MakeControllerFactory(const std::string& name,
                                                                 const std::string& exec,

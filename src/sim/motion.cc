@@ -13,8 +13,8 @@ namespace {
 constexpr double kPi = std::numbers::pi;
 constexpr double kSettle_s = 0.2;
 // The gripper's target moves from open to closed over this time (0.2 m/s per finger), as a
-// real gripper's fingers do: a target set at once slams the fingers into the cube at up to
-// 70 N, and a light cube squirts out.
+// real gripper's fingers move at a finite speed. Set at once, it slammed the fingers into the
+// cube; with the soft finger contacts of before (panda.cc), a light cube squirted out.
 constexpr double kGripperRamp_s = 0.2;
 }  // namespace
 

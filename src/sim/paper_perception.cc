@@ -28,7 +28,8 @@ std::optional<MaskEstimate> EstimateFromMask(const render::DepthImage& depth_of_
   e.depth_m = camera.near_m + range_m * e.depth_raw;
   const double bx = e.middle_px.x() / w, by = e.middle_px.y() / h;
   const double t = std::tan(camera.perspective_angle_rad / 2);
-  e.p_S = Eigen::Vector3d(e.depth_m * t * (0.5 - bx) * 2, e.depth_m * t * (0.5 - by) * 2, e.depth_m);
+  e.p_S =
+      Eigen::Vector3d(e.depth_m * t * (0.5 - bx) * 2, e.depth_m * t * (0.5 - by) * 2, e.depth_m);
   const Eigen::Vector3d p_C(-e.p_S.x(), e.p_S.y(), -e.p_S.z());
   e.p_W = camera.X_WC * p_C;
   return e;

@@ -69,9 +69,10 @@ const WorldArm& NearestArm(const Episode& ep, const Eigen::Vector3d& p_W,
 }
 
 void Release(Episode& ep, const WorldArm& arm, const Eigen::Vector3d& p_W) {
-  const TcpPlan plan = ep.PlanOrFail(arm, {{p_W + Eigen::Vector3d(0, 0, 0.1), "the put-down point"},
-                                           {p_W, "the put-down point"},
-                                           {p_W + Eigen::Vector3d(0, 0, 0.15), "away from the cube"}});
+  const TcpPlan plan =
+      ep.PlanOrFail(arm, {{p_W + Eigen::Vector3d(0, 0, 0.1), "the put-down point"},
+                          {p_W, "the put-down point"},
+                          {p_W + Eigen::Vector3d(0, 0, 0.15), "away from the cube"}});
   MoveJointsTo(ep.world, arm, plan.q[0], internal::kMove_s);
   MoveJointsTo(ep.world, arm, plan.q[1], internal::kDescend_s);
   MoveGripper(ep.world, arm, kPandaFingerTravel_m);
@@ -79,8 +80,8 @@ void Release(Episode& ep, const WorldArm& arm, const Eigen::Vector3d& p_W) {
   MoveJointsTo(ep.world, arm, kPandaReadyPose_rad, internal::kMove_s);  // out of the camera's way
 }
 
-const exporting::Body* FindNearest(const exporting::ExportScene& scene, const std::string& class_name,
-                                   const Eigen::Vector3d& p_W) {
+const exporting::Body* FindNearest(const exporting::ExportScene& scene,
+                                   const std::string& class_name, const Eigen::Vector3d& p_W) {
   const exporting::Body* best = nullptr;
   for (const exporting::Body& b : scene.bodies) {
     if (b.class_name != class_name) continue;
@@ -120,9 +121,11 @@ void RunRealisticTask(Episode& ep, TaskOutcome& outcome) {
   Release(ep, first, p_handover);
   const double slip = (ep.TrueCubePosition() - p_handover).head<2>().norm();
   if (slip > 0.05) {
-    End("poor-grip", fmt::format("the cube came down {:.1f} cm from the hand-over point", 100 * slip));
+    End("poor-grip",
+        fmt::format("the cube came down {:.1f} cm from the hand-over point", 100 * slip));
   }
-  const Eigen::Vector3d p_seen_again = SeeBlueBlob(ep, "after the hand-over", "sighting_error_handover_m");
+  const Eigen::Vector3d p_seen_again =
+      SeeBlueBlob(ep, "after the hand-over", "sighting_error_handover_m");
   const WorldArm& second = NearestArm(ep, p_seen_again, &first);
   PickCube(ep, second, p_seen_again);
   const exporting::Body* tray = FindNearest(world.scene, "Tray", second.X_WBase.translation());
@@ -193,7 +196,8 @@ TaskOutcome TableCubeController::Run(const lang::Scene& scene) {
   ep.cube = cube->name;
   ep.camera_id = 0;
   if (!renderer_) {
-    renderer_ = std::make_unique<render::ModelRenderer>(options_.image_width, options_.image_height);
+    renderer_ =
+        std::make_unique<render::ModelRenderer>(options_.image_width, options_.image_height);
   }
   renderer_->SetModel(*world.model);
   ep.renderer = renderer_.get();

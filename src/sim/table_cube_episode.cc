@@ -36,7 +36,8 @@ void Episode::FailAfterSighting(std::string outcome, std::string detail) const {
   if (last_sighting_error_m > options.perception_tolerance_m) {
     End("perception-fault",
         fmt::format("the cube was seen {:.1f} cm from where it was (hidden or partly out of view), "
-                    "so {}", 100 * last_sighting_error_m, detail));
+                    "so {}",
+                    100 * last_sighting_error_m, detail));
   }
   End(std::move(outcome), std::move(detail));
 }
@@ -44,18 +45,18 @@ void Episode::FailAfterSighting(std::string outcome, std::string detail) const {
 TcpPlan Episode::PlanOrFail(const WorldArm& arm, const std::vector<TcpWaypoint>& waypoints) const {
   TcpPlan plan = PlanDownwardPath(world, arm, waypoints);
   if (plan.failed >= 0) {
-    FailAfterSighting("no-path", fmt::format("{} found no joint angles to {} ({:.1f} cm short)",
-                                             arm.robot_name, waypoints[plan.failed].what,
-                                             100 * plan.failure.position_error_m));
+    FailAfterSighting(
+        "no-path", fmt::format("{} found no joint angles to {} ({:.1f} cm short)", arm.robot_name,
+                               waypoints[plan.failed].what, 100 * plan.failure.position_error_m));
   }
   return plan;
 }
 
-void Episode::Pick(const WorldArm& arm, const Eigen::Vector3d& p_above, const Eigen::Vector3d& p_grasp,
-                   const Eigen::Vector3d& p_rise) {
+void Episode::Pick(const WorldArm& arm, const Eigen::Vector3d& p_above,
+                   const Eigen::Vector3d& p_grasp, const Eigen::Vector3d& p_rise) {
   const double z_before = TrueCubePosition().z();
-  const TcpPlan plan = PlanOrFail(arm, {{p_above, "above the cube"}, {p_grasp, "the cube"},
-                                        {p_rise, "lift the cube"}});
+  const TcpPlan plan = PlanOrFail(
+      arm, {{p_above, "above the cube"}, {p_grasp, "the cube"}, {p_rise, "lift the cube"}});
   MoveJointsTo(world, arm, plan.q[0], kMove_s);
   MoveJointsTo(world, arm, plan.q[1], kDescend_s);
   MoveGripper(world, arm, 0.0);
@@ -67,7 +68,8 @@ void Episode::Pick(const WorldArm& arm, const Eigen::Vector3d& p_above, const Ei
   }
 }
 
-void Episode::MoveAboveOrFail(const WorldArm& arm, const Eigen::Vector3d& p_W, const std::string& what) {
+void Episode::MoveAboveOrFail(const WorldArm& arm, const Eigen::Vector3d& p_W,
+                              const std::string& what) {
   MoveJointsTo(world, arm, PlanOrFail(arm, {{p_W, what}}).q[0], kMove_s);
 }
 

@@ -13,14 +13,14 @@ namespace prs::sim::internal {
 
 namespace {
 
-constexpr double kGraspBelowSeen_m = 0.021;   // the original's z offset of the grasp
-constexpr double kRiseAboveSeen_m = 0.1;      // ... of the rise after it
-constexpr double kApproachAboveSeen_m = 0.12; // ours: above the cube first (see Pick)
-constexpr double kDropAboveTrays_m = 0.2;     // the first arm opens this high over the trays' midpoint
-constexpr double kMoveAway_m = 0.45;          // ... then moves this far along −x
-constexpr double kDropAboveTray_m = 0.1;      // the second opens this high over its tray's top
-constexpr double kSuccessReach_m = 0.453;     // success: within this of the tray in x and in y
-constexpr double kHandoverReach_m = 0.1;      // ours: the dropped cube lands within this
+constexpr double kGraspBelowSeen_m = 0.021;    // the original's z offset of the grasp
+constexpr double kRiseAboveSeen_m = 0.1;       // ... of the rise after it
+constexpr double kApproachAboveSeen_m = 0.12;  // ours: above the cube first (see Pick)
+constexpr double kDropAboveTrays_m = 0.2;      // the first arm opens this high over the trays
+constexpr double kMoveAway_m = 0.45;           // ... then moves this far along −x
+constexpr double kDropAboveTray_m = 0.1;       // the second opens this high over its tray's top
+constexpr double kSuccessReach_m = 0.453;      // success: within this of the tray in x and in y
+constexpr double kHandoverReach_m = 0.1;       // ours: the dropped cube lands within this
 
 // The point on the cube the camera sees (the centre of its top face, seen from above) as the
 // original estimated it, or a perception fault.
@@ -28,7 +28,8 @@ Eigen::Vector3d SeeCubeAlone(Episode& ep, const std::string& when, const std::st
   render::DepthImage depth;
   ep.renderer->Render(*ep.world.data, ep.camera_id, &depth, ep.world.body(ep.cube));
   MaskCamera camera;
-  camera.X_WC.translation() = Eigen::Map<const Eigen::Vector3d>(ep.world.data->cam_xpos + 3 * ep.camera_id);
+  camera.X_WC.translation() =
+      Eigen::Map<const Eigen::Vector3d>(ep.world.data->cam_xpos + 3 * ep.camera_id);
   camera.X_WC.linear() = Eigen::Map<const Eigen::Matrix<double, 3, 3, Eigen::RowMajor>>(
       ep.world.data->cam_xmat + 9 * ep.camera_id);
   const render::ModelRenderer::ClippingPlanes planes = ep.renderer->GetClippingPlanes();
@@ -87,8 +88,8 @@ void RunPaperTask(Episode& ep, TaskOutcome& outcome) {
   } catch (EpisodeEnd& end) {
     if (landed_m <= kHandoverReach_m) throw;
     End("poor-grip", fmt::format("the cube came down {:.1f} cm from the trays' midpoint, where {} "
-                                 "let it go, so {}", 100 * landed_m, first.robot_name,
-                                 end.outcome.detail));
+                                 "let it go, so {}",
+                                 100 * landed_m, first.robot_name, end.outcome.detail));
   }
   MoveGripper(world, second, kPandaFingerTravel_m, 1.0);
 
@@ -101,9 +102,12 @@ void RunPaperTask(Episode& ep, TaskOutcome& outcome) {
                                    "(the paper's success: both within 45.3 cm)",
                                    100 * offset.x(), tray_2->name, 100 * offset.y()));
   }
-  outcome.detail = in_tray ? fmt::format("the cube rests in {}", tray_2->name)
-                           : fmt::format("the cube ended within 45.3 cm of {} in x and y, outside "
-                                         "the tray", tray_2->name);
+  if (in_tray) {
+    outcome.detail = fmt::format("the cube rests in {}", tray_2->name);
+  } else {
+    outcome.detail =
+        fmt::format("the cube ended outside {}, within 45.3 cm of it in x and y", tray_2->name);
+  }
 }
 
 }  // namespace prs::sim::internal

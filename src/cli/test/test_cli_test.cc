@@ -137,7 +137,8 @@ size_t CountOccurrences(const std::string& text, const std::string& part) {
 // it one and say so once per run, whatever the thread count; the records carry the mass.
 TEST_F(PrsTestCommandTest, AMasslessPickTargetIsWarnedAboutOnceAndPicked) {
   const Result r = Run({"test", Example("table_cube_paper_model.prs"), "--controller",
-                        "table-cube-paper", "-n", "4", "-s", "1", "--threads", "2", "-o", Path("r.jsonl")});
+                        "table-cube-paper", "-n", "4", "-s", "1", "--threads", "2", "-o",
+                        Path("r.jsonl")});
   ASSERT_EQ(r.exit_code, 0) << r.err;
   EXPECT_EQ(CountOccurrences(r.err, "prs: warning: Cube_5 (a Cube) has no mass"), 1u) << r.err;
   const std::vector<json> records = ReadRecords(Path("r.jsonl"));

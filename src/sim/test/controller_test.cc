@@ -122,7 +122,8 @@ TEST_F(ControllerTest, TheOriginalModelsMasslessCubeIsLiftedAndCarried) {
     EXPECT_NEAR(Metric(o, "cube_mass_kg"), 0.064, 1e-12);
     EXPECT_EQ(Flag(o, "cube_mass_assumed"), true);
     ASSERT_EQ(o.warnings.size(), 1u);
-    EXPECT_NE(o.warnings[0].find("Cube_5 (a Cube) has no mass"), std::string::npos) << o.warnings[0];
+    EXPECT_NE(o.warnings[0].find("Cube_5 (a Cube) has no mass"), std::string::npos)
+        << o.warnings[0];
     EXPECT_NE(o.warnings[0].find("`mass: 0.1`"), std::string::npos) << o.warnings[0];
     EXPECT_GT(Metric(o, "cube_final_x_m"), 0) << "the cube should end in the right tray";
   }
@@ -136,7 +137,8 @@ TEST_F(ControllerTest, TheOriginalModelsMasslessCubeIsLiftedAndCarried) {
 // The paper's success is the cube within 0.453 m of the second tray in x and y; the record
 // says whether it also rests in the tray.
 TEST_F(ControllerTest, ThePaperControllerReportsBothCriteria) {
-  const TaskOutcome o = TableCubeController(MakePaperTableCubeOptions()).Run(testing_scenes::SamplePaperModel(0));
+  const TaskOutcome o =
+      TableCubeController(MakePaperTableCubeOptions()).Run(testing_scenes::SamplePaperModel(0));
   EXPECT_EQ(o.outcome, "success") << o.detail;
   EXPECT_EQ(Flag(o, "in_tray"), true);
   EXPECT_LT(Metric(o, "sighting_error_start_m"), 0.015);
@@ -163,7 +165,8 @@ TEST_F(ControllerTest, RobotBoxHeightsGiveComparableTables) {
   EXPECT_GE(tables[2]["success"], kScenes / 2);
   for (int h = 0; h < 2; ++h) {
     for (const auto& [outcome, count] : tables[2]) {
-      EXPECT_NEAR(tables[h][outcome], count, 1) << outcome << " with boxes " << heights[h] << " m tall";
+      EXPECT_NEAR(tables[h][outcome], count, 1)
+          << outcome << " with boxes " << heights[h] << " m tall";
     }
   }
 }

@@ -2,13 +2,14 @@
 // images, and on a rendered scene of the original's object model, where the mask is the cube
 // alone (an object above it hides it from the full image, not from the mask) and the estimate
 // is a pinhole back-projection of the mask's middle pixel.
+#include "sim/paper_perception.h"
+
 #include <gtest/gtest.h>
 
 #include <cmath>
 #include <limits>
 
 #include "render/model_renderer.h"
-#include "sim/paper_perception.h"
 #include "sim/perception.h"
 #include "sim/test/table_cube_scenes.h"
 #include "sim/world.h"
@@ -60,7 +61,8 @@ TEST(PaperPerceptionTest, AMiddleOffTheMaskReadsTheFarPlane) {
   // Two pixels, (0, 0) and (7, 5): middle (3.5, 2.5), read at (3, 2), where nothing was drawn:
   // raw 1, so 5.5 m. bx = 3.5/8, by = 2.5/6: x = 5.5 · (0.5 − 0.4375) · 2 = 0.6875,
   // y = 5.5 · (0.5 − 2.5/6) · 2 = 0.91666...
-  const std::optional<MaskEstimate> e = EstimateFromMask(MakeDepth({{0, 0}, {7, 5}}, 1.0f), MakeCamera());
+  const std::optional<MaskEstimate> e =
+      EstimateFromMask(MakeDepth({{0, 0}, {7, 5}}, 1.0f), MakeCamera());
   ASSERT_TRUE(e.has_value());
   EXPECT_EQ(e->middle_px, Eigen::Vector2d(3.5, 2.5));
   EXPECT_EQ(e->depth_raw, 1.0);
@@ -105,7 +107,8 @@ TEST(PaperPerceptionTest, TheRenderedMaskIsTheCubeAloneAndTheEstimateABackProjec
   renderer.Render(*world.data, 0, &depth, world.body("Cube_5"));
   MaskCamera camera;
   camera.X_WC.translation() = Eigen::Map<const Eigen::Vector3d>(world.data->cam_xpos);
-  camera.X_WC.linear() = Eigen::Map<const Eigen::Matrix<double, 3, 3, Eigen::RowMajor>>(world.data->cam_xmat);
+  camera.X_WC.linear() =
+      Eigen::Map<const Eigen::Matrix<double, 3, 3, Eigen::RowMajor>>(world.data->cam_xmat);
   camera.near_m = renderer.GetClippingPlanes().near_m;
   camera.far_m = renderer.GetClippingPlanes().far_m;
   camera.perspective_angle_rad = M_PI / 3;
@@ -119,7 +122,8 @@ TEST(PaperPerceptionTest, TheRenderedMaskIsTheCubeAloneAndTheEstimateABackProjec
   double top_row = 1e9, bottom_row = -1e9;
   for (int corner = 0; corner < 8; ++corner) {
     const Eigen::Vector3d offset((corner & 1 ? 0.5 : -0.5) * size.x(),
-                                 (corner & 2 ? 0.5 : -0.5) * size.y(), (corner & 4 ? 0.5 : -0.5) * size.z());
+                                 (corner & 2 ? 0.5 : -0.5) * size.y(),
+                                 (corner & 4 ? 0.5 : -0.5) * size.z());
     const double row = Project(pinhole, p_cube + offset).y();
     top_row = std::min(top_row, row), bottom_row = std::max(bottom_row, row);
   }

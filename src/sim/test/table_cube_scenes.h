@@ -47,7 +47,9 @@ inline const lang::CompiledProgram& PaperModelWithRobotHeight(double height_m) {
   const std::string original = "height: 1.025562";
   const size_t at = text.find(original);
   EXPECT_NE(at, std::string::npos) << "paper_model.prs no longer has " << original;
-  if (at != std::string::npos) text.replace(at, original.size(), "height: " + std::to_string(height_m));
+  if (at != std::string::npos) {
+    text.replace(at, original.size(), "height: " + std::to_string(height_m));
+  }
   const std::string temp = ::testing::TempDir() + "prs_robot_height_" + std::to_string(height_m);
   std::filesystem::create_directories(temp);
   std::ofstream(temp + "/paper_model.prs") << text;

@@ -145,7 +145,8 @@ TEST(WorldTest, AGraspHoldsTheCubeCentredAndLiftsIt) {
     int finger_contacts = 0;
     for (int i = 0; i < data.ncon; ++i) {
       const mjContact& c = data.contact[i];
-      if (world.model->geom_bodyid[c.geom1] != cube_body && world.model->geom_bodyid[c.geom2] != cube_body) continue;
+      const int* body_of = world.model->geom_bodyid;
+      if (body_of[c.geom1] != cube_body && body_of[c.geom2] != cube_body) continue;
       if (c.pos[2] < cube.p_WO.z() - cube.size.z() / 2 + 0.001) continue;  // the support
       ++finger_contacts;
       EXPECT_GT(c.dist, -0.004);
