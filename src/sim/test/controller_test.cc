@@ -152,10 +152,10 @@ TEST_F(ControllerTest, RobotBoxHeightsGiveComparableTables) {
   std::map<std::string, int> tables[3];
   const double heights[3] = {0.1, 0.5, 1.025562};
   for (int h = 0; h < 3; ++h) {
-    const lang::CompiledProgram& program = testing_scenes::PaperModelWithRobotHeight(heights[h]);
+    const auto program = testing_scenes::CompilePaperModelWithRobotHeight(heights[h]);
     TableCubeController controller(MakePaperTableCubeOptions());
     for (uint64_t index = 0; index < kScenes; ++index) {
-      const lang::Scene scene = sampling::SampleScene(program, 1, index).scene;
+      const lang::Scene scene = sampling::SampleScene(*program, 1, index).scene;
       for (const lang::SceneObject& o : scene.objects) {
         if (o.cls && o.cls->name == "Robot") ASSERT_EQ(o.dimensions.z(), heights[h]);
       }

@@ -8,6 +8,7 @@
 #include <cstdlib>
 #include <filesystem>
 #include <fstream>
+#include <memory>
 #include <sstream>
 #include <string>
 
@@ -36,8 +37,8 @@ inline const lang::CompiledProgram& PaperModelProgram() {
 }
 
 /// table_cube_paper_model.prs with the original model's Robot box `height_m` tall (the
-/// model's text with that one number changed), compiled; never freed.
-inline const lang::CompiledProgram& PaperModelWithRobotHeight(double height_m) {
+/// model's text with that one number changed), compiled. Keep it while its scenes are used.
+inline std::unique_ptr<lang::CompiledProgram> CompilePaperModelWithRobotHeight(double height_m) {
   const char* dir = std::getenv("PRS_SOURCE_DIR");
   const std::string examples = std::string(dir ? dir : PRS_DEFAULT_SOURCE_DIR) + "/examples/";
   std::ifstream model_file(examples + "paper_model.prs");
@@ -58,7 +59,7 @@ inline const lang::CompiledProgram& PaperModelWithRobotHeight(double height_m) {
   lang::DiagnosticEngine diagnostics;
   auto compiled = lang::CompileFile(temp + "/table_cube_paper_model.prs", {}, diagnostics);
   EXPECT_FALSE(diagnostics.has_errors()) << temp;
-  return *compiled.release();
+  return compiled;
 }
 
 inline lang::Scene SampleTableCube(uint64_t index) {
