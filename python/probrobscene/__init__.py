@@ -31,7 +31,8 @@ ParamValue = Union[int, float, str]
 
 def load(path: PathLike, params: Optional[Mapping[str, ParamValue]] = None,
          search_path: Optional[Sequence[PathLike]] = None, *, max_attempts: int = 10_000,
-         naive: bool = False) -> Scenario:
+         naive: bool = False, stable: Union[bool, float, None] = None,
+         stable_move: float = 0.01, stable_turn: float = 5.0) -> Scenario:
     """Compiles the scenario in the file ``path``.
 
     Args:
@@ -44,24 +45,32 @@ def load(path: PathLike, params: Optional[Mapping[str, ParamValue]] = None,
         max_attempts: Attempts per scene before sampling fails (``prs --max-attempts``).
         naive: Sample positions from the workspace and check the specifiers afterwards (the
             paper's baseline, ``prs --naive``); the scenes differ from the default mode's.
+        stable: Keep only scenes whose free bodies stay put under gravity (``prs --stable``):
+            ``True`` simulates 1 s, a number that many seconds; a scene in which a body moves
+            more than ``stable_move`` metres or turns more than ``stable_turn`` degrees is
+            rejected as "unstable" (docs/physics.md).
 
     Raises:
         ScenarioError: The file cannot be read or the program has errors; the exception carries
             the first error's message, id, file, line and column, and every error's text.
     """
     return _core.compile_file(os.fspath(path),
-                              _load_options(params, search_path, max_attempts, naive))
+                              _load_options(params, search_path, max_attempts, naive,
+                                            stable, stable_move, stable_turn))
 
 
 def loads(text: str, params: Optional[Mapping[str, ParamValue]] = None,
           search_path: Optional[Sequence[PathLike]] = None, *, name: str = "<string>",
-          max_attempts: int = 10_000, naive: bool = False) -> Scenario:
+          max_attempts: int = 10_000, naive: bool = False,
+          stable: Union[bool, float, None] = None, stable_move: float = 0.01,
+          stable_turn: float = 5.0) -> Scenario:
     """Compiles scenario source text; ``name`` names it in messages and anchors its imports.
 
     The other arguments and the errors are those of :func:`load`.
     """
     return _core.compile_text(text, name,
-                              _load_options(params, search_path, max_attempts, naive))
+                              _load_options(params, search_path, max_attempts, naive,
+                                            stable, stable_move, stable_turn))
 
 
 def _param_text(name: str, value: ParamValue) -> str:
@@ -75,7 +84,8 @@ def _param_text(name: str, value: ParamValue) -> str:
     return repr(float(value))  # the shortest text that reads back as the same float
 
 
-def _load_options(params, search_path, max_attempts, naive) -> "_core.LoadOptions":
+def _load_options(params, search_path, max_attempts, naive, stable=None, stable_move=0.01,
+                  stable_turn=5.0) -> "_core.LoadOptions":
     options = _core.LoadOptions()
     options.params = [(str(k), _param_text(str(k), v)) for k, v in (params or {}).items()]
     dirs = [os.fspath(d) for d in (search_path or [])]
@@ -83,6 +93,14 @@ def _load_options(params, search_path, max_attempts, naive) -> "_core.LoadOption
     options.search_path = dirs
     options.max_attempts = max_attempts
     options.naive = naive
+    if stable is True:
+        stable = 1.0
+    if stable is not None and stable is not False:
+        if isinstance(stable, bool) or not isinstance(stable, numbers.Real) or not stable > 0:
+            raise ValueError(f"stable must be True or a number of seconds above 0, got {stable!r}")
+        options.stable_s = float(stable)
+        options.stable_move_m = float(stable_move)
+        options.stable_turn_deg = float(stable_turn)
     return options
 
 

@@ -66,6 +66,9 @@ struct LoadOptions {
   std::vector<std::pair<std::string, std::string>> params;
   int64_t max_attempts = 10'000;
   bool naive = false;
+  double stable_s = 0;  // --stable: simulated seconds of the physics check; 0 off
+  double stable_move_m = 0.01;
+  double stable_turn_deg = 5;
 };
 
 /// scenario.cc: compiles `text` (or the file `path` when `text` is null), raising

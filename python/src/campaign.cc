@@ -3,12 +3,14 @@
 // maps shards over a Dask cluster.
 #include "campaign/campaign.h"
 
+#include <fmt/format.h>
 #include <pybind11/stl.h>
 
 #include "bindings.h"
 #include "campaign/search_campaign.h"
 #include "campaign/slurm.h"
 #include "controllers/builtin.h"
+#include "sim/stability.h"
 #include "output/line_writer.h"
 
 namespace prs::python {
@@ -64,8 +66,22 @@ std::string Init(const std::string& dir, const std::string& path, const LoadOpti
     spec.scenario_words.insert(spec.scenario_words.end(), {"-p", name + "=" + value});
   }
   if (load.naive) spec.scenario_words.push_back("--naive");
+  if (load.stable_s > 0) {
+    spec.scenario_words.push_back(fmt::format("--stable={}", load.stable_s));
+    if (load.stable_move_m != LoadOptions{}.stable_move_m) {
+      spec.scenario_words.insert(spec.scenario_words.end(),
+                                 {"--stable-move", fmt::format("{}", load.stable_move_m)});
+    }
+    if (load.stable_turn_deg != LoadOptions{}.stable_turn_deg) {
+      spec.scenario_words.insert(spec.scenario_words.end(),
+                                 {"--stable-turn", fmt::format("{}", load.stable_turn_deg)});
+    }
+  }
   spec.params = load.params;
   spec.naive = load.naive;
+  spec.stable_s = load.stable_s;
+  spec.stable_move_m = load.stable_move_m;
+  spec.stable_turn_deg = load.stable_turn_deg;
   spec.max_attempts = load.max_attempts;
   spec.seed = ToSceneNumber(seed_arg, "seed");
   spec.count = count;
@@ -92,8 +108,14 @@ void RunShard(const std::string& dir, uint64_t k, int threads) {
     std::vector<std::string> warnings;
     try {
       py::gil_scoped_release release;
+      sampling::SceneTest stable;  // the physics check of a campaign made with --stable
+      if (spec.stable_s > 0) {
+        stable = sim::MakeStabilityTest(
+            {spec.stable_s, spec.stable_move_m, spec.stable_turn_deg * M_PI / 180});
+      }
+      const auto collect = [&](const std::string& warning) { warnings.push_back(warning); };
       campaign::RunShard(dir, spec, *program, k, factory ? &*factory : nullptr, threads, nullptr,
-                         [&](const std::string& warning) { warnings.push_back(warning); });
+                         {collect, stable});
     } catch (const lang::ScenarioError& error) {
       RaiseScenarioError(error.diagnostic(), program->sources,
                          lang::RenderDiagnostic(error.diagnostic(), program->sources));

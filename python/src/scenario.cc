@@ -10,6 +10,7 @@
 #include "analysis/property_variation.h"
 #include "analysis/scenario_outline.h"
 #include "bindings.h"
+#include "sim/stability.h"
 #include "sampling/batch.h"
 
 namespace prs::python {
@@ -32,10 +33,12 @@ struct PythonErrorPending {};
 
 class Scenario {
  public:
-  Scenario(ProgramPtr program, std::string path, sampling::SampleOptions options)
+  Scenario(ProgramPtr program, std::string path, sampling::SampleOptions options,
+           double stable_s = 0)
       : program_(std::move(program)),
         path_(std::move(path)),
         options_(options),
+        stable_s_(stable_s),
         sampler_(*program_, options_) {}
 
   ScenePtr Sample(const py::object& seed_arg, const py::object& index_arg) {
@@ -86,6 +89,9 @@ class Scenario {
   const std::string& path() const { return path_; }
   int64_t max_attempts() const { return options_.max_attempts; }
   bool naive() const { return options_.run.mode == lang::SamplingMode::kNaive; }
+  std::optional<double> stable() const {
+    return stable_s_ > 0 ? std::optional<double>(stable_s_) : std::nullopt;
+  }
 
  private:
   ScenePtr Wrap(sampling::SampledScene sampled) const {
@@ -115,6 +121,7 @@ class Scenario {
   ProgramPtr program_;
   std::string path_;
   sampling::SampleOptions options_;
+  double stable_s_ = 0;  // --stable's seconds (the check is options_.accept), 0 when off
   sampling::SceneSampler sampler_;  // for sample(): its caches persist between calls
 };
 
@@ -202,7 +209,15 @@ std::unique_ptr<Scenario> Compile(const std::string& path, const std::optional<s
   sampling::SampleOptions sample;
   sample.max_attempts = load.max_attempts;
   sample.run.mode = load.naive ? lang::SamplingMode::kNaive : lang::SamplingMode::kRegion;
-  return std::make_unique<Scenario>(std::move(program), path, sample);
+  if (load.stable_s != 0) {
+    try {
+      sample.accept = sim::MakeStabilityTest(
+          {load.stable_s, load.stable_move_m, load.stable_turn_deg * M_PI / 180});
+    } catch (const std::invalid_argument& error) {
+      throw py::value_error(error.what());
+    }
+  }
+  return std::make_unique<Scenario>(std::move(program), path, sample, load.stable_s);
 }
 
 }  // namespace
@@ -263,7 +278,9 @@ void BindScenario(py::module_& m) {
       .def_property_readonly("path", &Scenario::path, "The file (or loads()' name).")
       .def_property_readonly("max_attempts", &Scenario::max_attempts,
                              "Attempts per scene before sampling fails.")
-      .def_property_readonly("naive", &Scenario::naive, "True in the naive sampling mode.");
+      .def_property_readonly("naive", &Scenario::naive, "True in the naive sampling mode.")
+      .def_property_readonly("stable", &Scenario::stable,
+                             "The simulated seconds of the physics check (stable=), or None.");
   m.def(
       "compile_file",
       [](const std::string& path, const LoadOptions& options) {
@@ -281,7 +298,10 @@ void BindScenario(py::module_& m) {
       .def_readwrite("search_path", &LoadOptions::search_path)
       .def_readwrite("params", &LoadOptions::params)
       .def_readwrite("max_attempts", &LoadOptions::max_attempts)
-      .def_readwrite("naive", &LoadOptions::naive);
+      .def_readwrite("naive", &LoadOptions::naive)
+      .def_readwrite("stable_s", &LoadOptions::stable_s)
+      .def_readwrite("stable_move_m", &LoadOptions::stable_move_m)
+      .def_readwrite("stable_turn_deg", &LoadOptions::stable_turn_deg);
 }
 
 }  // namespace prs::python

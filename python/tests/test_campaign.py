@@ -124,6 +124,22 @@ def test_a_shards_warnings_come_as_python_warnings_once(prs_binary, tmp_path):
             assert messages == [], messages
 
 
+def test_a_stable_campaign_is_prs_sample_stable(prs_binary, tmp_path):
+    """stable= at init is kept in the spec and applied by every shard."""
+    path = tmp_path / "drop.prs"
+    path.write_text("from model import *\nt = Table on V3D(0, 0, 0)\n"
+                    "d = Cube at V3D((-0.8, -0.6), 0.3, (0.825, 0.84))\n")
+    camp = tmp_path / "camp"
+    campaign.init(camp, path, 9, seed=4, shard_size=4, search_path=[EXAMPLES], stable=0.5)
+    campaign.run(camp)
+    campaign.merge(camp, tmp_path / "m.jsonl")
+    result = run_prs(prs_binary, "sample", str(path), "-I", str(EXAMPLES), "-n", "9", "-s", "4",
+                     "--stable=0.5")
+    assert result.returncode == 0, result.stderr
+    assert (tmp_path / "m.jsonl").read_text() == result.stdout
+    assert "unstable" in result.stdout
+
+
 def test_bad_campaigns_and_arguments_are_clear_errors(tmp_path):
     with pytest.raises(ValueError, match="not a campaign directory: to make one"):
         campaign.run(tmp_path / "nothing.prs")

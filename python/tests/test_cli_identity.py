@@ -49,3 +49,30 @@ def test_scenes_iterator_in_batches_matches_single_scenes(table_cube):
     ahead = table_cube.scenes(seed=9, threads=2)  # endless, sampled 128 at a time
     got = [next(ahead).to_json() for _ in range(130)]
     assert got == [table_cube.sample(9, i).to_json() for i in range(130)]
+
+
+DROP = ("from model import *\n"
+        "t = Table on V3D(0, 0, 0)\n"
+        "d = Cube at V3D((-0.8, -0.6), 0.3, (0.825, 0.84))\n")
+
+
+def test_stable_matches_prs_and_bad_values_are_refused(prs_binary, tmp_path):
+    """stable= is prs --stable: the same scenes (a cube drawn up to 1.5 cm above the table is
+    rejected when its fall and its sinking on impact exceed 8 mm), and bad values are
+    ValueErrors."""
+    path = tmp_path / "drop.prs"
+    path.write_text(DROP)
+    result = run_prs(prs_binary, "sample", str(path), "-I", str(EXAMPLES), "-n", "8", "-s", "4",
+                     "--stable=0.5", "--stable-move", "0.008")
+    assert result.returncode == 0, result.stderr
+    scenario = prs.load(path, search_path=[EXAMPLES], stable=0.5, stable_move=0.008)
+    assert scenario.stable == 0.5
+    assert [s.to_json() for s in scenario.sample_batch(8, seed=4, threads=2)] == \
+        result.stdout.splitlines()
+    assert "unstable" in result.stdout
+    assert prs.load(path, search_path=[EXAMPLES]).stable is None
+    for bad in (0, -1.0, "1", float("nan")):
+        with pytest.raises(ValueError):
+            prs.load(path, search_path=[EXAMPLES], stable=bad)
+    with pytest.raises(ValueError):
+        prs.load(path, search_path=[EXAMPLES], stable=True, stable_move=0)

@@ -45,7 +45,10 @@ nlohmann::json ToJson(const CampaignSpec& s) {
           {"spec_hash", s.spec_hash},
           {"version", s.version},
           {"strategy", s.strategy},
-          {"batch", s.batch}};
+          {"batch", s.batch},
+          {"stable_s", s.stable_s},
+          {"stable_move_m", s.stable_move_m},
+          {"stable_turn_deg", s.stable_turn_deg}};
 }
 
 std::string SidecarPath(const std::string& dir, uint64_t k) {
@@ -213,6 +216,9 @@ CampaignSpec ReadCampaign(const std::string& dir) {
     s.version = j.at("version");
     s.strategy = j.value("strategy", "");
     s.batch = j.value("batch", uint64_t{0});
+    s.stable_s = j.value("stable_s", 0.0);
+    s.stable_move_m = j.value("stable_move_m", 0.01);
+    s.stable_turn_deg = j.value("stable_turn_deg", 5.0);
     if ((s.kind != "test" && s.kind != "sample" && s.kind != "search") || s.count == 0 ||
         s.shard_size == 0 || (s.kind == "search") != (s.batch > 0)) {
       throw std::exception();
@@ -296,17 +302,20 @@ void WriteShard(const std::string& dir, const CampaignSpec& spec, uint64_t k,
 void RunShard(const std::string& dir, const CampaignSpec& spec,
               const lang::CompiledProgram& program, uint64_t k,
               const harness::ControllerFactory* factory, int threads,
-              const std::atomic<bool>* cancel,
-              const std::function<void(const std::string&)>& on_warning) {
+              const std::atomic<bool>* cancel, const ShardHooks& hooks) {
   if (k >= spec.shards()) {
     throw CampaignError(
         fmt::format("there is no shard {}: the campaign has shards 0 to {}", k, spec.shards() - 1));
   }
-  const sampling::SampleOptions sample = MakeSampleOptions(spec);
+  if (spec.stable_s > 0 && !hooks.accept) {
+    throw std::invalid_argument("RunShard: the campaign asks for --stable but no check was given");
+  }
+  sampling::SampleOptions sample = MakeSampleOptions(spec);
+  sample.accept = hooks.accept;
   std::vector<std::string> lines;
   if (spec.kind != "sample" && !factory) throw std::invalid_argument("RunShard: no controller");
   if (spec.kind == "search") {
-    lines = RunSearchShard(dir, spec, program, k, *factory, threads, cancel, on_warning);
+    lines = RunSearchShard(dir, spec, program, k, *factory, threads, cancel, hooks);
   } else if (spec.kind == "test") {
     harness::RunOptions run;
     run.sample = sample;
@@ -316,7 +325,7 @@ void RunShard(const std::string& dir, const CampaignSpec& spec,
     run.threads = threads;
     run.scenario_args = spec.scenario_words;
     run.cancel = cancel;
-    run.on_warning = on_warning;
+    run.on_warning = hooks.on_warning;
     run.on_record = [&](const harness::EpisodeRecord& r) {
       lines.push_back(harness::FormatRecordJson(r));
     };

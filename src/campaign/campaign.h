@@ -42,6 +42,10 @@ struct CampaignSpec {
   // the budget. Shards never straddle generations: each generation is cut on its own.
   std::string strategy;
   uint64_t batch = 0;
+  // --stable: the simulated seconds of the physics check (0: off), and its tolerances.
+  double stable_s = 0;
+  double stable_move_m = 0.01;
+  double stable_turn_deg = 5;
 
   uint64_t shards() const;
   /// The scenes (episodes) of shard k: [first, first + size).
@@ -97,13 +101,19 @@ void WriteShard(const std::string& dir, const CampaignSpec& spec, uint64_t k,
 /// episodes (kind "search", from its generation's plan: search_campaign.h) of its range, on
 /// `threads` threads, and writes it. Throws CampaignError for a shard index out of range or a
 /// search generation that cannot start yet, and what harness::RunEpisodes /
-/// sampling::SampleBatch throw. `on_warning` gets each distinct warning of the episodes once
-/// (harness::RunOptions::on_warning).
+/// sampling::SampleBatch throw; std::invalid_argument when the spec asks for --stable and
+/// `hooks` has no scene test.
+struct ShardHooks {
+  /// Gets each distinct warning of the episodes once (harness::RunOptions::on_warning).
+  std::function<void(const std::string&)> on_warning;
+  /// The physics check the spec asks for (stable_s > 0), made above this stage, which does not
+  /// simulate: sim::MakeStabilityTest.
+  sampling::SceneTest accept;
+};
 void RunShard(const std::string& dir, const CampaignSpec& spec,
               const lang::CompiledProgram& program, uint64_t k,
               const harness::ControllerFactory* factory, int threads,
-              const std::atomic<bool>* cancel,
-              const std::function<void(const std::string&)>& on_warning = nullptr);
+              const std::atomic<bool>* cancel, const ShardHooks& hooks = {});
 
 /// The lines of every done shard in index order. Throws CampaignError naming the shards that
 /// are not done, unless `partial` (then those are skipped and listed in *skipped).

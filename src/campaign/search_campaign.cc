@@ -118,8 +118,7 @@ SearchStep PlanSearchStep(const std::string& dir, const CampaignSpec& spec,
 std::vector<std::string> RunSearchShard(const std::string& dir, const CampaignSpec& spec,
                                         const lang::CompiledProgram& program, uint64_t k,
                                         const harness::ControllerFactory& factory, int threads,
-                                        const std::atomic<bool>* cancel,
-                                        const std::function<void(const std::string&)>& on_warning) {
+                                        const std::atomic<bool>* cancel, const ShardHooks& hooks) {
   const uint64_t g = spec.generation(k);
   std::optional<search::GenerationPlan> plan = ReadGenerationPlan(dir, g);
   if (!plan) {
@@ -135,7 +134,8 @@ std::vector<std::string> RunSearchShard(const std::string& dir, const CampaignSp
   harness::RunOptions run = MakeSearchOptions(spec).run;
   run.threads = threads;
   run.cancel = cancel;
-  run.on_warning = on_warning;
+  run.on_warning = hooks.on_warning;
+  run.sample.accept = hooks.accept;
   std::vector<std::string> lines;
   run.on_record = [&](const harness::EpisodeRecord& record) {
     lines.push_back(harness::FormatRecordJson(record));

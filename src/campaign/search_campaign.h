@@ -49,7 +49,6 @@ SearchStep PlanSearchStep(const std::string& dir, const CampaignSpec& spec,
 std::vector<std::string> RunSearchShard(const std::string& dir, const CampaignSpec& spec,
                                         const lang::CompiledProgram& program, uint64_t k,
                                         const harness::ControllerFactory& factory, int threads,
-                                        const std::atomic<bool>* cancel,
-                                        const std::function<void(const std::string&)>& on_warning);
+                                        const std::atomic<bool>* cancel, const ShardHooks& hooks);
 
 }  // namespace prs::campaign

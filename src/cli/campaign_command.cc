@@ -23,6 +23,13 @@
 namespace prs::cli {
 namespace {
 
+// The physics check the campaign's spec asks for (--stable at init), or none.
+sampling::SceneTest MakeStabilityTest(const campaign::CampaignSpec& spec) {
+  if (spec.stable_s <= 0) return nullptr;
+  return sim::MakeStabilityTest(
+      {spec.stable_s, spec.stable_move_m, spec.stable_turn_deg * M_PI / 180});
+}
+
 struct CampaignArgs {
   // init
   ScenarioArgs scenario;
@@ -76,6 +83,11 @@ int RunInit(const CampaignArgs& args) {
   for (const auto& [name, value] : program->param_overrides) spec.params.emplace_back(name, value);
   spec.naive = args.sampling.naive;
   spec.max_attempts = args.sampling.max_attempts;
+  if (const std::optional<sim::StabilityOptions> stable = MakeStabilityOptions(args.sampling)) {
+    spec.stable_s = stable->duration_s;
+    spec.stable_move_m = args.sampling.stable_move_m;
+    spec.stable_turn_deg = args.sampling.stable_turn_deg;
+  }
   spec.seed = args.sampling.seed;
   spec.count = static_cast<uint64_t>(args.count);
   spec.shard_size = static_cast<uint64_t>(args.shard_size);
@@ -120,7 +132,7 @@ int RunShardCommand(const CampaignArgs& args) {
     }
     campaign::RunShard(args.dir, spec, *program, static_cast<uint64_t>(args.shard),
                        factory ? &*factory : nullptr, args.sampling.threads, &interrupt.flag(),
-                       WarnOnce());
+                       {WarnOnce(), MakeStabilityTest(spec)});
     return kExitSuccess;
   } catch (const campaign::CampaignError& error) {
     PrintError(error.what());

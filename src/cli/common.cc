@@ -84,6 +84,22 @@ CLI::Validator NonEmptyPath() {
       "");
 }
 
+CLI::Validator PositiveNumber(const std::string& of_what) {
+  return CLI::Validator(
+      [of_what](std::string& text) -> std::string {
+        size_t used = 0;
+        double value = 0;
+        try {
+          value = std::stod(text, &used);
+        } catch (const std::exception&) {
+          used = 0;
+        }
+        if (used == text.size() && value > 0 && value < 1e6) return "";
+        return "expects a number of " + of_what + " above 0 (and below 10^6), got '" + text + "'";
+      },
+      "");
+}
+
 // Digits only, so that "-1" is not wrapped around to 2^64 - 1, and within 64 bits.
 CLI::Validator UnsignedIntegerText() {
   return CLI::Validator(
@@ -147,6 +163,28 @@ void AddSamplingOptions(CLI::App& command, SamplingArgs& args) {
       ->type_name("K")
       ->check(IntegerAtLeast(1))
       ->capture_default_str();
+  command
+      .add_flag("--stable{1}", args.stable_s,
+                "keep only scenes whose free bodies stay put under gravity for T simulated "
+                "seconds (--stable=T; default 1; docs/physics.md)")
+      ->check(PositiveNumber("seconds"));
+  command.add_option("--stable-move", args.stable_move_m, "--stable: metres a body may move")
+      ->type_name("M")
+      ->check(PositiveNumber("metres"))
+      ->capture_default_str();
+  command.add_option("--stable-turn", args.stable_turn_deg, "--stable: degrees a body may turn")
+      ->type_name("DEG")
+      ->check(PositiveNumber("degrees"))
+      ->capture_default_str();
+}
+
+std::optional<sim::StabilityOptions> MakeStabilityOptions(const SamplingArgs& args) {
+  if (args.stable_s.empty()) return std::nullopt;
+  sim::StabilityOptions options;
+  options.duration_s = std::stod(args.stable_s);  // checked by PositiveNumber
+  options.max_move_m = args.stable_move_m;
+  options.max_turn_rad = args.stable_turn_deg * M_PI / 180;
+  return options;
 }
 
 int CountHardwareThreads() { return std::max(1u, std::thread::hardware_concurrency()); }
@@ -171,6 +209,9 @@ sampling::SampleOptions MakeSampleOptions(const SamplingArgs& args) {
   sampling::SampleOptions options;
   options.max_attempts = args.max_attempts;
   options.run.mode = args.naive ? lang::SamplingMode::kNaive : lang::SamplingMode::kRegion;
+  if (const std::optional<sim::StabilityOptions> stable = MakeStabilityOptions(args)) {
+    options.accept = sim::MakeStabilityTest(*stable);
+  }
   return options;
 }
 

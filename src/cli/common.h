@@ -16,6 +16,7 @@
 #include "lang/lang.h"
 #include "sampling/batch.h"
 #include "sampling/sampler.h"
+#include "sim/stability.h"
 
 namespace prs::cli {
 
@@ -41,11 +42,20 @@ struct SamplingArgs {
   int threads = 1;
   bool naive = false;
   int64_t max_attempts = 10'000;
+  /// --stable[=T]: the simulated seconds of the physics check, as given ("1" for a bare
+  /// --stable); empty when off.
+  std::string stable_s;
+  double stable_move_m = 0.01;
+  double stable_turn_deg = 5;
 };
+
+/// The physics check of --stable, when it was given.
+std::optional<sim::StabilityOptions> MakeStabilityOptions(const SamplingArgs& args);
 
 /// Adds FILE, -I and -p to `command`.
 void AddScenarioOptions(CLI::App& command, ScenarioArgs& args);
-/// Adds -s, --threads, --naive and --max-attempts to `command`.
+/// Adds -s, --threads, --naive, --max-attempts and --stable[=T], --stable-move,
+/// --stable-turn to `command`.
 void AddSamplingOptions(CLI::App& command, SamplingArgs& args);
 /// Which scenes a command makes: -n N (at least `min_count`) and --start I.
 struct SceneRangeArgs {
@@ -66,6 +76,8 @@ CLI::Validator UnsignedIntegerText();
 
 /// Refuses an empty path (`-o ''`), which would otherwise mean stdout or nothing, silently.
 CLI::Validator NonEmptyPath();
+/// A number above 0 and below 10^6 ("expects a number of seconds above 0 ...").
+CLI::Validator PositiveNumber(const std::string& of_what);
 
 /// All hardware threads (at least 1).
 int CountHardwareThreads();

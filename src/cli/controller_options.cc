@@ -10,25 +10,6 @@
 #include "harness/registry.h"
 
 namespace prs::cli {
-namespace {
-
-CLI::Validator PositiveSeconds() {
-  return CLI::Validator(
-      [](std::string& text) -> std::string {
-        size_t used = 0;
-        double value = 0;
-        try {
-          value = std::stod(text, &used);
-        } catch (const std::exception&) {
-          used = 0;
-        }
-        if (used == text.size() && value > 0 && value < 1e6) return "";
-        return "expects a number of seconds above 0 (and below 10^6), got '" + text + "'";
-      },
-      "");
-}
-
-}  // namespace
 
 void AddControllerOptions(CLI::App& command, ControllerArgs& args) {
   controllers::RegisterBuiltInControllers();
@@ -43,7 +24,7 @@ void AddControllerOptions(CLI::App& command, ControllerArgs& args) {
       ->excludes(controller);
   command.add_option("--timeout", args.timeout_s, "seconds an --exec episode may take")
       ->type_name("S")
-      ->check(PositiveSeconds())
+      ->check(PositiveNumber("seconds"))
       ->capture_default_str();
 }
 
@@ -75,6 +56,17 @@ std::vector<std::string> MakeScenarioWords(const ScenarioArgs& scenario,
   for (const std::string& dir : scenario.include_dirs) words.insert(words.end(), {"-I", dir});
   for (const std::string& param : scenario.params) words.insert(words.end(), {"-p", param});
   if (sampling.naive) words.push_back("--naive");
+  // --stable changes which attempt a scene is (unstable ones are rejected): keep it, with
+  // tolerances that are not the defaults.
+  if (!sampling.stable_s.empty()) {
+    words.push_back("--stable=" + sampling.stable_s);
+    if (sampling.stable_move_m != SamplingArgs{}.stable_move_m) {
+      words.insert(words.end(), {"--stable-move", fmt::format("{}", sampling.stable_move_m)});
+    }
+    if (sampling.stable_turn_deg != SamplingArgs{}.stable_turn_deg) {
+      words.insert(words.end(), {"--stable-turn", fmt::format("{}", sampling.stable_turn_deg)});
+    }
+  }
   return words;
 }
 

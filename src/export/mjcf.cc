@@ -77,6 +77,20 @@ std::string FormatGeomType(const Body& body) {
   return fmt::format("type=\"box\" size=\"{}\"", FormatVector(body.size / 2));
 }
 
+// MuJoCo 2.2 touches a cylinder and a box at one point, so an upright can on a table rocks
+// and tilts by several degrees. A box inscribed in the cylinder (a square of side r·√2, the
+// cylinder's height; hidden, group 3) gives its flat ends the box-box collider's several
+// contacts. It lies inside the cylinder, so it never touches anything first elsewhere: a can
+// on its side still rolls. Free bodies carry an explicit inertial, so it adds no mass.
+void AppendCylinderFoot(const Body& body, std::string& out) {
+  const double half_side = body.cylinder_radius() / std::sqrt(2.0);
+  fmt::format_to(std::back_inserter(out),
+                 "      <geom name=\"{}_foot\" type=\"box\" size=\"{} {} {}\" group=\"3\" "
+                 "rgba=\"{}\"/>\n",
+                 body.name, FormatNumber(half_side), FormatNumber(half_side),
+                 FormatNumber(body.size.z() / 2), FormatRgba(body.color));
+}
+
 // A MuJoCo camera looks along its -z with +y up; a scene's camera looks along its forward +y
 // with +z up. The quarter turn about x maps one onto the other.
 bool IsCamera(const Body& body) { return body.class_name == "Camera"; }
@@ -114,6 +128,7 @@ void AppendBody(const Body& body, MeshAssets& assets, std::string& out) {
     fmt::format_to(std::back_inserter(out), "      <geom name=\"{}\" {} rgba=\"{}\"{}/>\n",
                    body.name, FormatGeomType(body), FormatRgba(body.color),
                    body.collides ? "" : " contype=\"0\" conaffinity=\"0\"");
+    if (body.shape == Shape::kCylinder && body.collides) AppendCylinderFoot(body, out);
   }
   if (IsCamera(body)) {
     fmt::format_to(std::back_inserter(out),

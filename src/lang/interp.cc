@@ -25,6 +25,7 @@ const char* RejectionKindName(RejectionKind kind) {
     case RejectionKind::kContainment: return "containment";
     case RejectionKind::kOccluded: return "occluded";
     case RejectionKind::kVisible: return "visible";
+    case RejectionKind::kUnstable: return "unstable";
   }
   return "unknown";
 }

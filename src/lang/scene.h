@@ -111,6 +111,7 @@ enum class RejectionKind {
   kContainment,       // naive mode: an on / completely on / in specifier does not hold
   kOccluded,          // `visible from`: another object hides (part of) the object from the camera
   kVisible,           // `not visible from`: the camera sees the object's centre
+  kUnstable,          // --stable: a free body moved or turned under gravity (sim/stability.h)
 };
 
 struct Rejection {

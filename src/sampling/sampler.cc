@@ -23,20 +23,29 @@ void RejectionCounts::Merge(const RejectionCounts& other) {
 
 namespace {
 
-// Throws "sampling-failed" located at the most frequent culprit, with counts per reason.
-[[noreturn]] void ThrowSamplingFailure(const RejectionCounts& counts, int64_t attempts) {
-  const auto* worst = &*counts.by_culprit.begin();
+// Throws "sampling-failed" located at the most frequent culprit, with counts per reason. When
+// some attempts made a scene and the scene test (SampleOptions::accept, of kind `tested_kind`)
+// rejected every one, that is the message: the program's own most frequent reason is not
+// what stands in the way.
+[[noreturn]] void ThrowSamplingFailure(const RejectionCounts& counts, int64_t attempts,
+                                       int64_t tested, lang::RejectionKind tested_kind) {
+  const std::pair<const std::pair<lang::RejectionKind, std::string>, int64_t>* worst = nullptr;
   for (const auto& entry : counts.by_culprit) {
-    if (entry.second > worst->second) worst = &entry;
+    if (tested > 0 && entry.first.first != tested_kind) continue;  // the test's culprits only
+    if (!worst || entry.second > worst->second) worst = &entry;
   }
   const lang::Rejection& example = counts.examples.at(worst->first);
   lang::Diagnostic d;
   d.id = "sampling-failed";
   d.span = example.span;
-  d.message = "no valid scene after " + std::to_string(attempts) +
-              " attempts; the most frequent reason was " +
-              lang::RejectionKindName(worst->first.first) + ": " + worst->first.second + " (" +
-              std::to_string(worst->second) + " times)";
+  const std::string reason = std::string(lang::RejectionKindName(worst->first.first)) + ": " +
+                             worst->first.second + " (" + std::to_string(worst->second) + " times)";
+  d.message = tested > 0 ? "no valid scene after " + std::to_string(attempts) + " attempts: the " +
+                               std::to_string(tested) +
+                               " scenes that met the program's constraints all failed the scene "
+                               "test, most often " + reason
+                         : "no valid scene after " + std::to_string(attempts) +
+                               " attempts; the most frequent reason was " + reason;
   if (!example.detail.empty()) {
     d.notes.push_back({{}, false, "in one such attempt: " + example.detail});
   }
@@ -61,6 +70,10 @@ namespace {
   throw lang::ScenarioError(std::move(d));
 }
 
+// Whether two streams are at the same place: their next draws agree (two different states give
+// the same 64 bits with probability 2^-64).
+bool IsSameStream(geometry::Rng a, geometry::Rng b) { return a.NextU64() == b.NextU64(); }
+
 }  // namespace
 
 SceneSampler::SceneSampler(const lang::CompiledProgram& program, SampleOptions options)
@@ -79,17 +92,30 @@ SampledScene SceneSampler::Sample(uint64_t seed, uint64_t index) {
   std::vector<double> u(points ? points->dimension() : 0);
   std::set<std::pair<lang::RejectionKind, std::string>> explained;
   run.explained = &explained;
+  int64_t tested = 0;  // scenes the program made, all rejected by options_.accept so far
+  lang::RejectionKind tested_kind = lang::RejectionKind::kUnstable;
   while (result.attempts < options_.max_attempts) {
     const bool at_point = points && points->Point(seed, index, result.attempts, u.data());
     run.coordinates = at_point ? lang::CoordinateInput{u.data(), static_cast<int>(u.size())}
                                : lang::CoordinateInput{};
     ++result.attempts;
     if (options_.live) options_.live->attempts.fetch_add(1, std::memory_order_relaxed);
+    const geometry::Rng rng_before = rng;
     lang::AttemptResult attempt = lang::RunAttempt(program_, rng, run);
     if (auto* scene = std::get_if<lang::Scene>(&attempt)) {
-      result.scene = std::move(*scene);
-      if (at_point) result.coordinates = std::move(u);
-      return result;
+      std::optional<lang::Rejection> failed =
+          options_.accept ? options_.accept(*scene) : std::nullopt;
+      if (!failed) {
+        result.scene = std::move(*scene);
+        if (at_point) result.coordinates = std::move(u);
+        return result;
+      }
+      // Without a draw (the stream did not move, and no point was given), every attempt
+      // would make this scene again.
+      failed->certain = !at_point && IsSameStream(rng_before, rng);
+      ++tested;
+      tested_kind = failed->kind;
+      attempt = std::move(*failed);
     }
     if (options_.live) options_.live->rejections.fetch_add(1, std::memory_order_relaxed);
     const lang::Rejection& rejection = std::get<lang::Rejection>(attempt);
@@ -98,7 +124,7 @@ SampledScene SceneSampler::Sample(uint64_t seed, uint64_t index) {
     // Nothing random ran, so retrying would only repeat this rejection.
     if (rejection.certain) ThrowCertainFailure(rejection);
   }
-  ThrowSamplingFailure(result.rejections, result.attempts);
+  ThrowSamplingFailure(result.rejections, result.attempts, tested, tested_kind);
 }
 
 std::vector<lang::CoordinateInfo> DescribeCoordinates(const lang::CompiledProgram& program,

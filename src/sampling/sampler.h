@@ -5,6 +5,7 @@
 
 #include <atomic>
 #include <cstdint>
+#include <functional>
 #include <map>
 #include <memory>
 #include <optional>
@@ -37,6 +38,13 @@ class AttemptPoints {
   virtual bool Point(uint64_t seed, uint64_t index, int64_t attempt, double* u) const = 0;
 };
 
+/// A test a scene must pass after the program's own, handed down by the stage that owns it (a
+/// physics check: sim/stability.h): the rejection, or nullopt to accept. A failed test rejects
+/// the attempt like any other reason, so the accepted scenes are the program's scenes
+/// conditioned on passing it. Must be thread-safe and a pure function of the scene, so that
+/// scenes stay the same for any thread count.
+using SceneTest = std::function<std::optional<lang::Rejection>(const lang::Scene&)>;
+
 struct SampleOptions {
   lang::RunOptions run;
   int64_t max_attempts = 10'000;
@@ -46,6 +54,8 @@ struct SampleOptions {
   /// False: every attempt starts from nothing, no work kept between scenes (lang::RunCache).
   /// Slower, and the same scenes: for tests of the caches.
   bool use_run_cache = true;
+  /// Optional: run on every scene an attempt makes (e.g. --stable).
+  SceneTest accept;
 };
 
 /// Rejections of one scene (or many), keyed by (kind, culprit).

@@ -54,6 +54,30 @@ TEST_F(PrsTest, CampaignShardsMergeIntoOneMachinesRun) {
   EXPECT_NE(r.err.find("prs campaign init"), std::string::npos) << r.err;
 }
 
+// --stable at init is kept in the spec, and each shard applies it: the merged scenes are
+// `prs sample --stable`'s (a cube drawn up to 1.5 cm above the table, the higher draws rejected).
+TEST_F(PrsTest, CampaignShardsKeepStable) {
+  const std::string file = Write("drop.prs",
+                                 "from model import *\nt = Table on V3D(0, 0, 0)\n"
+                                 "d = Cube at V3D((-0.8, -0.6), 0.3, (0.825, 0.84))\n");
+  const std::string dir = (dir_ / "campaign").string();
+  Result r = Run({"campaign", "init", dir, file, "-I", Example(""), "-n", "12", "--shard-size",
+                  "5", "-s", "4", "--stable=0.5"});
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  for (const char* k : {"2", "0", "1"}) {
+    r = Run({"campaign", "run-shard", dir, k, "--threads", "2"});
+    ASSERT_EQ(r.exit_code, 0) << r.err;
+  }
+  const std::string merged = (dir_ / "merged.jsonl").string();
+  r = Run({"campaign", "merge", dir, "-o", merged});
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  const Result single =
+      Run({"sample", file, "-I", Example(""), "-n", "12", "-s", "4", "--stable=0.5"});
+  ASSERT_EQ(single.exit_code, 0) << single.err;
+  EXPECT_EQ(ReadText(merged), single.out);
+  EXPECT_NE(single.out.find("\"unstable\""), std::string::npos) << "no scene was rejected";
+}
+
 TEST_F(PrsTest, CampaignSlurmScriptRunsTheUnfinishedShards) {
   const std::string dir = (dir_ / "campaign").string();
   Result r = Run({"campaign", "init", dir, Example("table_cube.prs"), "-n", "30", "--shard-size",

@@ -236,6 +236,71 @@ TEST_F(PrsTest, StatsJsonHasCountsThatAddUp) {
   EXPECT_NEAR(stats["acceptance_rate"].get<double>(), 200.0 / (200 + rejections), 1e-12);
 }
 
+// `d` is drawn 0 to 1.5 cm above the table: --stable rejects the scenes where its fall, with the
+// 2-3 mm it sinks into the table on impact, exceeds 1 cm (draws above about 7 mm), the same
+// scenes for any thread count; prs stats counts them as "unstable" with `d` as the culprit; the
+// tolerance is an option; bad values are usage errors.
+const char kDropProgram[] =
+    "from model import *\n"
+    "t = Table on V3D(0, 0, 0)\n"
+    "c = Cube on t\n"
+    "d = Cube at V3D((-0.8, -0.6), 0.3, (0.825, 0.84))\n";
+
+TEST_F(PrsTest, StableKeepsTheScenesAtRestForAnyThreadCount) {
+  const std::string file = Write("drop.prs", kDropProgram);
+  const std::vector<std::string> args = {"sample", file, "-I", Example(""), "-n", "20", "-s", "4",
+                                         "--stable"};
+  std::string outputs[2];
+  for (const int threads : {1, 2}) {
+    std::vector<std::string> with = args;
+    with.insert(with.end(), {"--threads", std::to_string(threads)});
+    const Result r = Run(with);
+    ASSERT_EQ(r.exit_code, 0) << r.err;
+    outputs[threads - 1] = r.out;
+  }
+  EXPECT_EQ(outputs[0], outputs[1]);
+  int rejected = 0;
+  for (const std::string& line : SplitLines(outputs[0])) {
+    const json scene = json::parse(line);
+    EXPECT_LE(scene["objects"][2]["position"][2].get<double>(), 0.825 + 0.0105);  // d
+    if (scene["rejections"].contains("unstable")) {
+      rejected += scene["rejections"]["unstable"].get<int>();
+    }
+  }
+  EXPECT_GT(rejected, 0);
+  const Result stats = Run({"stats", file, "-I", Example(""), "-n", "20", "-s", "4", "--stable",
+                            "--json"});
+  ASSERT_EQ(stats.exit_code, 0) << stats.err;
+  const json counts = json::parse(stats.out);
+  EXPECT_EQ(counts["rejections"]["by_reason"]["unstable"], rejected);
+  EXPECT_EQ(counts["rejections"]["by_culprit"][0]["culprit"], "d");
+  // A 2 cm tolerance accepts every draw (at most 1.5 cm of fall and 3 mm of sinking).
+  const Result loose = Run({"stats", file, "-I", Example(""), "-n", "20", "-s", "4", "--stable",
+                            "--stable-move", "0.02", "--json"});
+  ASSERT_EQ(loose.exit_code, 0) << loose.err;
+  EXPECT_FALSE(json::parse(loose.out)["rejections"]["by_reason"].contains("unstable"));
+  for (const std::vector<std::string>& bad :
+       {std::vector<std::string>{"--stable=0"}, {"--stable=abc"}, {"--stable-move", "-1"},
+        {"--stable-turn", "0"}}) {
+    std::vector<std::string> with = {"sample", file, "-I", Example("")};
+    with.insert(with.end(), bad.begin(), bad.end());
+    const Result r = Run(with);
+    EXPECT_EQ(r.exit_code, 2) << bad[0];
+    EXPECT_NE(r.err.find("expects a number of"), std::string::npos) << r.err;
+  }
+}
+
+// A failing scene's regenerate command keeps --stable: without it, it would be another scene.
+TEST_F(PrsTest, StableIsInTheRegenerateCommand) {
+  const std::string file = Write("drop.prs", kDropProgram);
+  const Result r = Run({"test", file, "-I", Example(""), "--exec", "exit 3", "-n", "1", "-s", "4",
+                        "--stable=0.5", "-o", (dir_ / "r.jsonl").string()});
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  const json record = json::parse(ReadText(dir_ / "r.jsonl"));
+  const std::string command = record["regenerate"];
+  EXPECT_NE(command.find(" --stable=0.5 "), std::string::npos) << command;
+}
+
 TEST_F(PrsTest, StatsTableLocatesTheCulprit) {
   const std::string file = Write("req.prs", kRequirementProgram);
   const Result r = Run({"stats", file, "-I", Example(""), "-n", "50"});

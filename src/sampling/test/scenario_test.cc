@@ -29,6 +29,85 @@ tray = Tray completely on table, facing V3D(1, 1, 0)
   }
 }
 
+// A scene test handed down from above (as --stable's physics check is) rejects attempts like
+// any other reason: the accepted scenes are the program's conditioned on passing it, each
+// rejection counted under its kind and culprit, and the same scene for the same (seed, index).
+TEST(ScenarioTest, ASceneTestConditionsTheScenesAndCountsItsRejections) {
+  auto program =
+      CompileOrDie("from model import *\nt = Table on floor\nc = Cube completely on t\n");
+  ASSERT_NE(program, nullptr);
+  SampleOptions options;
+  options.accept = [](const Scene& scene) -> std::optional<lang::Rejection> {
+    if (Find(scene, "c").p_WO.x() >= 0) return std::nullopt;
+    return lang::Rejection{lang::RejectionKind::kUnstable, "c", {}, "c is left of 0", false};
+  };
+  int64_t rejected = 0, attempts = 0;
+  for (uint64_t i = 0; i < 400; ++i) {
+    const SampledScene s = SampleScene(*program, 3, i, options);
+    EXPECT_GE(Find(s.scene, "c").p_WO.x(), 0);
+    rejected += s.rejections.by_kind.count(lang::RejectionKind::kUnstable)
+                    ? s.rejections.by_kind.at(lang::RejectionKind::kUnstable)
+                    : 0;
+    attempts += s.attempts;
+    EXPECT_EQ(s.rejections.total, s.attempts - 1);
+    if (s.rejections.total > 0) {
+      EXPECT_EQ(s.rejections.by_culprit.begin()->first.second, "c");
+    }
+    if (i == 17) {  // the same scene again
+      const Scene again = SampleScene(*program, 3, i, options).scene;
+      EXPECT_EQ(Find(again, "c").p_WO, Find(s.scene, "c").p_WO);
+    }
+  }
+  // Half the table is left of 0: about one rejection per accepted scene.
+  EXPECT_NEAR(double(rejected) / 400, 1.0, 0.25);
+  EXPECT_EQ(rejected, attempts - 400);
+}
+
+// A test that fails a program which draws nothing fails every attempt the same way: said at
+// once, not after --max-attempts attempts.
+TEST(ScenarioTest, ASceneTestFailingAFixedProgramFailsAtOnce) {
+  auto program = CompileOrDie("from model import *\nc = Cube at V3D(0, 0, 1)\n");
+  ASSERT_NE(program, nullptr);
+  SampleOptions options;
+  int calls = 0;
+  options.accept = [&calls](const Scene&) -> std::optional<lang::Rejection> {
+    ++calls;
+    return lang::Rejection{lang::RejectionKind::kUnstable, "c", {}, "c fell 0.97 m", false};
+  };
+  try {
+    SampleScene(*program, 1, 0, options);
+    FAIL() << "no error";
+  } catch (const lang::ScenarioError& error) {
+    const std::string& message = error.diagnostic().message;
+    EXPECT_NE(message.find("every attempt fails the same way"), std::string::npos) << message;
+    EXPECT_NE(error.diagnostic().message.find("unstable: c"), std::string::npos);
+  }
+  EXPECT_EQ(calls, 1);
+}
+
+// When every scene the program makes fails the test, the failure says so and points at the
+// test's culprit, not at the program's own most frequent rejection.
+TEST(ScenarioTest, ASceneTestRejectingEverySceneIsWhatTheFailureNames) {
+  auto program = CompileOrDie("from model import *\nt = Table on floor\nc = Cube completely on t\n"
+                              "require c.position.x > 0\n");
+  ASSERT_NE(program, nullptr);
+  SampleOptions options;
+  options.max_attempts = 200;
+  options.accept = [](const Scene&) -> std::optional<lang::Rejection> {
+    return lang::Rejection{lang::RejectionKind::kUnstable, "c", {}, "c fell", false};
+  };
+  try {
+    SampleScene(*program, 1, 0, options);
+    FAIL() << "no error";
+  } catch (const lang::ScenarioError& error) {
+    const std::string& message = error.diagnostic().message;
+    EXPECT_NE(message.find("met the program's constraints all failed the scene test, most often "
+                           "unstable: c ("),
+              std::string::npos)
+        << message;
+  }
+}
+
 TEST(ScenarioTest, SameSeedAndIndexGiveTheSameScene) {
   auto program = CompileOrDie("from model import *\n"
                               "t = Table on floor\nc = Cube completely on t\n"

@@ -1,0 +1,65 @@
+// Does a scene stay as drawn once a simulator starts? Its physics model as `prs export --format
+// mjcf` writes it (free bodies are the objects with a positive mass, the rest static) is
+// simulated under gravity until every free body is at rest, one moves or turns past the
+// tolerance, or the time runs out; each free body's motion is reported (docs/physics.md).
+// The sampler takes CheckStable as an acceptance test handed down from the command line
+// (sampling::SampleOptions::accept), so sampling never includes this stage.
+#pragma once
+
+#include <Eigen/Core>
+#include <functional>
+#include <optional>
+#include <string>
+#include <vector>
+
+#include "export/export.h"
+#include "lang/scene.h"
+
+namespace prs::sim {
+
+struct StabilityOptions {
+  double duration_s = 1.0;             // simulated time at most
+  double max_move_m = 0.01;            // a free body whose centre moves further is unstable
+  double max_turn_rad = 0.0872664626;  // ... or that turns further (5°)
+};
+
+/// Throws std::invalid_argument naming the option when a value is not a positive finite
+/// number (the command line reports it as a usage error).
+void CheckStabilityOptions(const StabilityOptions& options);
+
+/// How one free body moved from where the scene drew it.
+struct BodyMotion {
+  int object = -1;  // its index in the scene (and in ExportScene::bodies)
+  Eigen::Vector3d p_moved_W = Eigen::Vector3d::Zero();  // displacement of its centre
+  double turned_rad = 0;                                // angle of its rotation
+  double speed_m_s = 0;                                 // at the end
+};
+
+struct StabilityReport {
+  std::vector<BodyMotion> free_bodies;  // in scene order; empty: nothing was simulated
+  double simulated_s = 0;
+  /// Every free body had been at rest (below 5 mm/s and 0.05 rad/s for 0.1 s) when the
+  /// simulation stopped; false when one moved past the tolerance first, or time ran out.
+  bool at_rest = false;
+  /// The free body (index into free_bodies) that decided an unstable scene, else -1.
+  int culprit = -1;
+};
+
+/// Simulates `scene` under gravity (MuJoCo, 2 ms steps) as described above. Deterministic.
+/// A scene without a free body is not simulated (at rest at once). Throws std::runtime_error
+/// with MuJoCo's message when it refuses the model.
+StabilityReport SimulateUnderGravity(const exporting::ExportScene& scene,
+                                     const StabilityOptions& options);
+
+/// The rejection of a scene some free body of which does not stay put ("unstable", culprit the
+/// object's display name, detail e.g. "Cube#5 fell 2.04 m in 0.66 s"), or nullopt. Throws
+/// what SimulateUnderGravity throws.
+std::optional<lang::Rejection> CheckStable(const lang::Scene& scene,
+                                           const StabilityOptions& options);
+
+/// CheckStable with `options` as a scene test for the sampler (sampling::SceneTest is this
+/// function type). Checks the options first (CheckStabilityOptions).
+std::function<std::optional<lang::Rejection>(const lang::Scene&)> MakeStabilityTest(
+    const StabilityOptions& options);
+
+}  // namespace prs::sim
