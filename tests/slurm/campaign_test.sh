@@ -113,9 +113,14 @@ same_records "$work/merged.jsonl" "$work/single.jsonl" $n || fail "merged != one
 
 # A search campaign on Slurm: three generations of 20 in shards of 10; the next-step job of
 # generation 0 submits generation 1, one of whose tasks is cancelled as it runs; the next step
-# after that submits it again.
+# after that submits it again. The controller sleeps 0.4 s an episode and answers from the
+# episode's index: a shard takes 4 s without using the CPUs, so the test sees its task running
+# and cancels it well before it ends (with the simulated case study, two tasks kept both CPUs
+# busy and the test, starved, once cancelled a shard that had just been written).
 search=$work/search
-"$prs" campaign init "$search" "$example" --controller table-cube -n 60 --search ce --batch 20 \
+controller='sleep 0.4; case $((PRS_INDEX % 4)) in 0) echo "{\"outcome\": \"no-path\", \"score\": -1}";;
+  *) echo "{\"outcome\": \"success\", \"score\": $((PRS_INDEX % 7 + 1))}";; esac'
+"$prs" campaign init "$search" "$example" --exec "$controller" -n 60 --search ce --batch 20 \
   --shard-size 10 -s 3
 "$prs" campaign slurm "$search" --max-running 2 >/dev/null
 second_array() { [[ -f $search/slurm/submit-1.json ]]; }
@@ -130,7 +135,7 @@ wait_for 300 search_done ||
 grep -qx "#SBATCH --array=2%2" "$search"/slurm/submit-2.sh ||
   fail "the cancelled shard 2 was not submitted again: $(cat "$search"/slurm/submit-2.sh)"
 "$prs" campaign merge "$search" -o "$work/search_merged.jsonl" >/dev/null
-"$prs" search "$example" --controller table-cube --budget 60 --batch 20 -s 3 -q \
+"$prs" search "$example" --exec "$controller" --budget 60 --batch 20 -s 3 -q \
   -o "$work/search_single.jsonl" >/dev/null
 same_records "$work/search_merged.jsonl" "$work/search_single.jsonl" 60 ||
   fail "the merged search != one machine's prs search"
