@@ -116,7 +116,8 @@ TEST(StabilityTest, AcceptedScenesStayPutInMujocoForTwoSeconds) {
   const char* const examples[] = {"table_cube.prs", "pantry_shapes.prs", "kitchen_meshes.prs"};
   int accepted = 0;
   for (const char* name : examples) {
-    const lang::CompiledProgram* program = testing_scenes::CompileExample(name);
+    const std::unique_ptr<const lang::CompiledProgram> program(
+        testing_scenes::CompileExample(name));
     sampling::SampleOptions options;
     options.accept = MakeStabilityTest({});
     for (uint64_t index = 0; index < 4; ++index) {
