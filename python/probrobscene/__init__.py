@@ -32,7 +32,8 @@ ParamValue = Union[int, float, str]
 def load(path: PathLike, params: Optional[Mapping[str, ParamValue]] = None,
          search_path: Optional[Sequence[PathLike]] = None, *, max_attempts: int = 10_000,
          naive: bool = False, stable: Union[bool, float, None] = None,
-         stable_move: float = 0.01, stable_turn: float = 5.0) -> Scenario:
+         stable_move: float = 0.01, stable_turn: float = 5.0,
+         settle: Union[bool, float, None] = None) -> Scenario:
     """Compiles the scenario in the file ``path``.
 
     Args:
@@ -49,6 +50,11 @@ def load(path: PathLike, params: Optional[Mapping[str, ParamValue]] = None,
             ``True`` simulates 1 s, a number that many seconds; a scene in which a body moves
             more than ``stable_move`` metres or turns more than ``stable_turn`` degrees is
             rejected as "unstable" (docs/physics.md).
+        settle: Let the free bodies fall and come to rest, and give the scenes as they end
+            (``prs --settle``): ``True`` allows 3 s of simulated time, a number that many
+            seconds; a scene not at rest by then, with an object outside the workspace, or
+            breaking a ``require settled``, is rejected as "unsettled" (docs/physics.md).
+            Not with ``stable``.
 
     Raises:
         ScenarioError: The file cannot be read or the program has errors; the exception carries
@@ -56,21 +62,21 @@ def load(path: PathLike, params: Optional[Mapping[str, ParamValue]] = None,
     """
     return _core.compile_file(os.fspath(path),
                               _load_options(params, search_path, max_attempts, naive,
-                                            stable, stable_move, stable_turn))
+                                            stable, stable_move, stable_turn, settle))
 
 
 def loads(text: str, params: Optional[Mapping[str, ParamValue]] = None,
           search_path: Optional[Sequence[PathLike]] = None, *, name: str = "<string>",
           max_attempts: int = 10_000, naive: bool = False,
           stable: Union[bool, float, None] = None, stable_move: float = 0.01,
-          stable_turn: float = 5.0) -> Scenario:
+          stable_turn: float = 5.0, settle: Union[bool, float, None] = None) -> Scenario:
     """Compiles scenario source text; ``name`` names it in messages and anchors its imports.
 
     The other arguments and the errors are those of :func:`load`.
     """
     return _core.compile_text(text, name,
                               _load_options(params, search_path, max_attempts, naive,
-                                            stable, stable_move, stable_turn))
+                                            stable, stable_move, stable_turn, settle))
 
 
 def _param_text(name: str, value: ParamValue) -> str:
@@ -84,8 +90,17 @@ def _param_text(name: str, value: ParamValue) -> str:
     return repr(float(value))  # the shortest text that reads back as the same float
 
 
+def _seconds(name: str, value, default: float) -> float:
+    """stable= or settle=: True for the default, else a number of seconds above 0."""
+    if value is True:
+        return default
+    if isinstance(value, bool) or not isinstance(value, numbers.Real) or not value > 0:
+        raise ValueError(f"{name} must be True or a number of seconds above 0, got {value!r}")
+    return float(value)
+
+
 def _load_options(params, search_path, max_attempts, naive, stable=None, stable_move=0.01,
-                  stable_turn=5.0) -> "_core.LoadOptions":
+                  stable_turn=5.0, settle=None) -> "_core.LoadOptions":
     options = _core.LoadOptions()
     options.params = [(str(k), _param_text(str(k), v)) for k, v in (params or {}).items()]
     dirs = [os.fspath(d) for d in (search_path or [])]
@@ -93,14 +108,12 @@ def _load_options(params, search_path, max_attempts, naive, stable=None, stable_
     options.search_path = dirs
     options.max_attempts = max_attempts
     options.naive = naive
-    if stable is True:
-        stable = 1.0
     if stable is not None and stable is not False:
-        if isinstance(stable, bool) or not isinstance(stable, numbers.Real) or not stable > 0:
-            raise ValueError(f"stable must be True or a number of seconds above 0, got {stable!r}")
-        options.stable_s = float(stable)
+        options.stable_s = _seconds("stable", stable, 1.0)
         options.stable_move_m = float(stable_move)
         options.stable_turn_deg = float(stable_turn)
+    if settle is not None and settle is not False:
+        options.settle_s = _seconds("settle", settle, 3.0)
     return options
 
 

@@ -30,21 +30,22 @@ def init(dir: PathLike, path: PathLike, n: int, *, seed: int = 0, shard_size: in
          params: Optional[Mapping[str, Any]] = None, search_path: Sequence[PathLike] = (),
          max_attempts: int = 10_000, naive: bool = False, search: Optional[str] = None,
          batch: Optional[int] = None, stable: Union[bool, float, None] = None,
-         stable_move: float = 0.01, stable_turn: float = 5.0) -> str:
+         stable_move: float = 0.01, stable_turn: float = 5.0,
+         settle: Union[bool, float, None] = None) -> str:
     """Makes the campaign directory ``dir`` (new or empty), as ``prs campaign init``: ``n``
     episodes of ``controller`` (a built-in name) or ``exec`` (a shell command, docs/harness.md)
     in the scenario file ``path``, or ``n`` scenes without either, in shards of ``shard_size``.
     With ``search`` ("ce", "anneal" or "random") the episodes are a failure search of budget
     ``n`` in generations of ``batch`` (default as ``prs search``), run generation after
-    generation (docs/search.md). ``stable`` as for :func:`probrobscene.load` (``--stable``):
-    every shard keeps only scenes at rest. Returns the campaign id. Raises ScenarioError for a
+    generation (docs/search.md). ``stable`` and ``settle`` as for :func:`probrobscene.load`
+    (``--stable``, ``--settle``): every shard keeps only scenes at rest, or settles them. Returns the campaign id. Raises ScenarioError for a
     scenario that does not compile and ValueError for a directory that is in use or an unknown
     controller or strategy."""
     from . import _load_options  # the package's own conversion of params and options
     if n < 1 or shard_size < 1:
         raise ValueError(f"n and shard_size must be >= 1, got {n} and {shard_size}")
     options = _load_options(params, search_path, max_attempts, naive, stable, stable_move,
-                            stable_turn)
+                            stable_turn, settle)
     if search is not None and search not in ("ce", "anneal", "random"):
         raise ValueError(f"unknown search strategy {search!r} (strategies: ce, anneal, random)")
     if batch is not None and (search is None or batch < 1):

@@ -10,7 +10,7 @@
 #include "campaign/search_campaign.h"
 #include "campaign/slurm.h"
 #include "controllers/builtin.h"
-#include "sim/stability.h"
+#include "sim/settle.h"
 #include "output/line_writer.h"
 
 namespace prs::python {
@@ -77,11 +77,13 @@ std::string Init(const std::string& dir, const std::string& path, const LoadOpti
                                  {"--stable-turn", fmt::format("{}", load.stable_turn_deg)});
     }
   }
+  if (load.settle_s > 0) spec.scenario_words.push_back(fmt::format("--settle={}", load.settle_s));
   spec.params = load.params;
   spec.naive = load.naive;
   spec.stable_s = load.stable_s;
   spec.stable_move_m = load.stable_move_m;
   spec.stable_turn_deg = load.stable_turn_deg;
+  spec.settle_s = load.settle_s;
   spec.max_attempts = load.max_attempts;
   spec.seed = ToSceneNumber(seed_arg, "seed");
   spec.count = count;
@@ -108,14 +110,12 @@ void RunShard(const std::string& dir, uint64_t k, int threads) {
     std::vector<std::string> warnings;
     try {
       py::gil_scoped_release release;
-      sampling::SceneTest stable;  // the physics check of a campaign made with --stable
-      if (spec.stable_s > 0) {
-        stable = sim::MakeStabilityTest(
-            {spec.stable_s, spec.stable_move_m, spec.stable_turn_deg * M_PI / 180});
-      }
+      // The physics check of a campaign made with stable= or settle=.
+      const sampling::SceneTest physics = sim::MakePhysicsTest(
+          {spec.stable_s, spec.stable_move_m, spec.stable_turn_deg, spec.settle_s});
       const auto collect = [&](const std::string& warning) { warnings.push_back(warning); };
       campaign::RunShard(dir, spec, *program, k, factory ? &*factory : nullptr, threads, nullptr,
-                         {collect, stable});
+                         {collect, physics});
     } catch (const lang::ScenarioError& error) {
       RaiseScenarioError(error.diagnostic(), program->sources,
                          lang::RenderDiagnostic(error.diagnostic(), program->sources));

@@ -10,7 +10,7 @@
 #include "analysis/property_variation.h"
 #include "analysis/scenario_outline.h"
 #include "bindings.h"
-#include "sim/stability.h"
+#include "sim/settle.h"
 #include "sampling/batch.h"
 
 namespace prs::python {
@@ -34,11 +34,12 @@ struct PythonErrorPending {};
 class Scenario {
  public:
   Scenario(ProgramPtr program, std::string path, sampling::SampleOptions options,
-           double stable_s = 0)
+           double stable_s = 0, double settle_s = 0)
       : program_(std::move(program)),
         path_(std::move(path)),
         options_(options),
         stable_s_(stable_s),
+        settle_s_(settle_s),
         sampler_(*program_, options_) {}
 
   ScenePtr Sample(const py::object& seed_arg, const py::object& index_arg) {
@@ -92,6 +93,9 @@ class Scenario {
   std::optional<double> stable() const {
     return stable_s_ > 0 ? std::optional<double>(stable_s_) : std::nullopt;
   }
+  std::optional<double> settle() const {
+    return settle_s_ > 0 ? std::optional<double>(settle_s_) : std::nullopt;
+  }
 
  private:
   ScenePtr Wrap(sampling::SampledScene sampled) const {
@@ -122,6 +126,7 @@ class Scenario {
   std::string path_;
   sampling::SampleOptions options_;
   double stable_s_ = 0;  // --stable's seconds (the check is options_.accept), 0 when off
+  double settle_s_ = 0;  // --settle's seconds (options_.accept settles), 0 when off
   sampling::SceneSampler sampler_;  // for sample(): its caches persist between calls
 };
 
@@ -209,15 +214,14 @@ std::unique_ptr<Scenario> Compile(const std::string& path, const std::optional<s
   sampling::SampleOptions sample;
   sample.max_attempts = load.max_attempts;
   sample.run.mode = load.naive ? lang::SamplingMode::kNaive : lang::SamplingMode::kRegion;
-  if (load.stable_s != 0) {
-    try {
-      sample.accept = sim::MakeStabilityTest(
-          {load.stable_s, load.stable_move_m, load.stable_turn_deg * M_PI / 180});
-    } catch (const std::invalid_argument& error) {
-      throw py::value_error(error.what());
-    }
+  try {
+    sample.accept = sim::MakePhysicsTest(
+        {load.stable_s, load.stable_move_m, load.stable_turn_deg, load.settle_s});
+  } catch (const std::invalid_argument& error) {
+    throw py::value_error(error.what());
   }
-  return std::make_unique<Scenario>(std::move(program), path, sample, load.stable_s);
+  return std::make_unique<Scenario>(std::move(program), path, sample, load.stable_s,
+                                    load.settle_s);
 }
 
 }  // namespace
@@ -280,7 +284,9 @@ void BindScenario(py::module_& m) {
                              "Attempts per scene before sampling fails.")
       .def_property_readonly("naive", &Scenario::naive, "True in the naive sampling mode.")
       .def_property_readonly("stable", &Scenario::stable,
-                             "The simulated seconds of the physics check (stable=), or None.");
+                             "The simulated seconds of the physics check (stable=), or None.")
+      .def_property_readonly("settle", &Scenario::settle,
+                             "The most simulated seconds scenes get to settle (settle=), or None.");
   m.def(
       "compile_file",
       [](const std::string& path, const LoadOptions& options) {
@@ -301,7 +307,8 @@ void BindScenario(py::module_& m) {
       .def_readwrite("naive", &LoadOptions::naive)
       .def_readwrite("stable_s", &LoadOptions::stable_s)
       .def_readwrite("stable_move_m", &LoadOptions::stable_move_m)
-      .def_readwrite("stable_turn_deg", &LoadOptions::stable_turn_deg);
+      .def_readwrite("stable_turn_deg", &LoadOptions::stable_turn_deg)
+      .def_readwrite("settle_s", &LoadOptions::settle_s);
 }
 
 }  // namespace prs::python

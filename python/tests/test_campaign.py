@@ -124,20 +124,26 @@ def test_a_shards_warnings_come_as_python_warnings_once(prs_binary, tmp_path):
             assert messages == [], messages
 
 
-def test_a_stable_campaign_is_prs_sample_stable(prs_binary, tmp_path):
-    """stable= at init is kept in the spec and applied by every shard."""
-    path = tmp_path / "drop.prs"
-    path.write_text("from model import *\nt = Table on V3D(0, 0, 0)\n"
-                    "d = Cube at V3D((-0.8, -0.6), 0.3, (0.825, 0.84))\n")
+@pytest.mark.parametrize("option, text, rejection", [
+    ({"stable": 0.5}, "d = Cube at V3D((-0.8, -0.6), 0.3, (0.825, 0.84))\n", "unstable"),
+    ({"settle": True}, "c = Cube at V3D((0.85, 0.95), 0, 1.2)\nrequire settled c.z > 0.5\n",
+     "unsettled"),
+])
+def test_stable_and_settled_campaigns_are_prs_samples(prs_binary, tmp_path, option, text,
+                                                       rejection):
+    """stable= and settle= at init are kept in the spec and applied by every shard."""
+    path = tmp_path / "scenario.prs"
+    path.write_text("from model import *\nt = Table on V3D(0, 0, 0)\n" + text)
     camp = tmp_path / "camp"
-    campaign.init(camp, path, 9, seed=4, shard_size=4, search_path=[EXAMPLES], stable=0.5)
+    campaign.init(camp, path, 9, seed=4, shard_size=4, search_path=[EXAMPLES], **option)
     campaign.run(camp)
     campaign.merge(camp, tmp_path / "m.jsonl")
+    flag = "--stable=0.5" if "stable" in option else "--settle"
     result = run_prs(prs_binary, "sample", str(path), "-I", str(EXAMPLES), "-n", "9", "-s", "4",
-                     "--stable=0.5")
+                     flag)
     assert result.returncode == 0, result.stderr
     assert (tmp_path / "m.jsonl").read_text() == result.stdout
-    assert "unstable" in result.stdout
+    assert rejection in result.stdout
 
 
 def test_bad_campaigns_and_arguments_are_clear_errors(tmp_path):

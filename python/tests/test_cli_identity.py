@@ -76,3 +76,29 @@ def test_stable_matches_prs_and_bad_values_are_refused(prs_binary, tmp_path):
             prs.load(path, search_path=[EXAMPLES], stable=bad)
     with pytest.raises(ValueError):
         prs.load(path, search_path=[EXAMPLES], stable=True, stable_move=0)
+
+
+FALL = ("from model import *\n"
+        "t = Table on V3D(0, 0, 0)\n"
+        "c = Cube at V3D((0.85, 0.95), 0, 1.2)\n"
+        "require settled c.z > 0.5\n")
+
+
+def test_settle_matches_prs_and_bad_values_are_refused(prs_binary, tmp_path):
+    """settle= is prs --settle: the same settled scenes (cubes that fall off the table's edge are
+    drawn again), and bad values, or settle= with stable=, are ValueErrors."""
+    path = tmp_path / "fall.prs"
+    path.write_text(FALL)
+    result = run_prs(prs_binary, "sample", str(path), "-I", str(EXAMPLES), "-n", "6", "-s", "3",
+                     "--settle")
+    assert result.returncode == 0, result.stderr
+    scenario = prs.load(path, search_path=[EXAMPLES], settle=True)
+    assert scenario.settle == 3.0
+    assert [s.to_json() for s in scenario.sample_batch(6, seed=3, threads=2)] == \
+        result.stdout.splitlines()
+    assert '"settled_s"' in result.stdout and "unsettled" in result.stdout
+    for bad in (0, -1.0, "1", float("nan")):
+        with pytest.raises(ValueError):
+            prs.load(path, search_path=[EXAMPLES], settle=bad)
+    with pytest.raises(ValueError):
+        prs.load(path, search_path=[EXAMPLES], settle=True, stable=True)

@@ -48,7 +48,8 @@ nlohmann::json ToJson(const CampaignSpec& s) {
           {"batch", s.batch},
           {"stable_s", s.stable_s},
           {"stable_move_m", s.stable_move_m},
-          {"stable_turn_deg", s.stable_turn_deg}};
+          {"stable_turn_deg", s.stable_turn_deg},
+          {"settle_s", s.settle_s}};
 }
 
 std::string SidecarPath(const std::string& dir, uint64_t k) {
@@ -219,6 +220,7 @@ CampaignSpec ReadCampaign(const std::string& dir) {
     s.stable_s = j.value("stable_s", 0.0);
     s.stable_move_m = j.value("stable_move_m", 0.01);
     s.stable_turn_deg = j.value("stable_turn_deg", 5.0);
+    s.settle_s = j.value("settle_s", 0.0);
     if ((s.kind != "test" && s.kind != "sample" && s.kind != "search") || s.count == 0 ||
         s.shard_size == 0 || (s.kind == "search") != (s.batch > 0)) {
       throw std::exception();
@@ -307,8 +309,9 @@ void RunShard(const std::string& dir, const CampaignSpec& spec,
     throw CampaignError(
         fmt::format("there is no shard {}: the campaign has shards 0 to {}", k, spec.shards() - 1));
   }
-  if (spec.stable_s > 0 && !hooks.accept) {
-    throw std::invalid_argument("RunShard: the campaign asks for --stable but no check was given");
+  if ((spec.stable_s > 0 || spec.settle_s > 0) && !hooks.accept) {
+    throw std::invalid_argument(
+        "RunShard: the campaign asks for --stable or --settle but no check was given");
   }
   sampling::SampleOptions sample = MakeSampleOptions(spec);
   sample.accept = hooks.accept;

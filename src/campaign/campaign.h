@@ -46,6 +46,8 @@ struct CampaignSpec {
   double stable_s = 0;
   double stable_move_m = 0.01;
   double stable_turn_deg = 5;
+  // --settle: the most simulated seconds scenes get to come to rest (0: off).
+  double settle_s = 0;
 
   uint64_t shards() const;
   /// The scenes (episodes) of shard k: [first, first + size).
@@ -101,13 +103,13 @@ void WriteShard(const std::string& dir, const CampaignSpec& spec, uint64_t k,
 /// episodes (kind "search", from its generation's plan: search_campaign.h) of its range, on
 /// `threads` threads, and writes it. Throws CampaignError for a shard index out of range or a
 /// search generation that cannot start yet, and what harness::RunEpisodes /
-/// sampling::SampleBatch throw; std::invalid_argument when the spec asks for --stable and
+/// sampling::SampleBatch throw; std::invalid_argument when the spec asks for --stable or --settle and
 /// `hooks` has no scene test.
 struct ShardHooks {
   /// Gets each distinct warning of the episodes once (harness::RunOptions::on_warning).
   std::function<void(const std::string&)> on_warning;
-  /// The physics check the spec asks for (stable_s > 0), made above this stage, which does not
-  /// simulate: sim::MakeStabilityTest.
+  /// The physics check the spec asks for (stable_s > 0 or settle_s > 0), made above this
+  /// stage, which does not simulate: sim::MakeStabilityTest or sim::MakeSettleTest.
   sampling::SceneTest accept;
 };
 void RunShard(const std::string& dir, const CampaignSpec& spec,

@@ -23,11 +23,10 @@
 namespace prs::cli {
 namespace {
 
-// The physics check the campaign's spec asks for (--stable at init), or none.
-sampling::SceneTest MakeStabilityTest(const campaign::CampaignSpec& spec) {
-  if (spec.stable_s <= 0) return nullptr;
-  return sim::MakeStabilityTest(
-      {spec.stable_s, spec.stable_move_m, spec.stable_turn_deg * M_PI / 180});
+// The physics check the campaign's spec asks for (--stable or --settle at init), or none.
+sampling::SceneTest MakePhysicsTest(const campaign::CampaignSpec& spec) {
+  return sim::MakePhysicsTest(
+      {spec.stable_s, spec.stable_move_m, spec.stable_turn_deg, spec.settle_s});
 }
 
 struct CampaignArgs {
@@ -83,11 +82,11 @@ int RunInit(const CampaignArgs& args) {
   for (const auto& [name, value] : program->param_overrides) spec.params.emplace_back(name, value);
   spec.naive = args.sampling.naive;
   spec.max_attempts = args.sampling.max_attempts;
-  if (const std::optional<sim::StabilityOptions> stable = MakeStabilityOptions(args.sampling)) {
-    spec.stable_s = stable->duration_s;
-    spec.stable_move_m = args.sampling.stable_move_m;
-    spec.stable_turn_deg = args.sampling.stable_turn_deg;
-  }
+  const sim::PhysicsCheck physics = MakePhysicsCheck(args.sampling);
+  spec.stable_s = physics.stable_s;
+  spec.stable_move_m = physics.stable_move_m;
+  spec.stable_turn_deg = physics.stable_turn_deg;
+  spec.settle_s = physics.settle_s;
   spec.seed = args.sampling.seed;
   spec.count = static_cast<uint64_t>(args.count);
   spec.shard_size = static_cast<uint64_t>(args.shard_size);
@@ -132,7 +131,7 @@ int RunShardCommand(const CampaignArgs& args) {
     }
     campaign::RunShard(args.dir, spec, *program, static_cast<uint64_t>(args.shard),
                        factory ? &*factory : nullptr, args.sampling.threads, &interrupt.flag(),
-                       {WarnOnce(), MakeStabilityTest(spec)});
+                       {WarnOnce(), MakePhysicsTest(spec)});
     return kExitSuccess;
   } catch (const campaign::CampaignError& error) {
     PrintError(error.what());

@@ -176,6 +176,23 @@ void AddSamplingOptions(CLI::App& command, SamplingArgs& args) {
       ->type_name("DEG")
       ->check(PositiveNumber("degrees"))
       ->capture_default_str();
+  command
+      .add_flag("--settle{3}", args.settle_s,
+                "let the free bodies fall and come to rest (at most T simulated seconds: "
+                "--settle=T; default 3), then check the workspace and `require settled` "
+                "(docs/physics.md)")
+      ->check(PositiveNumber("seconds"))
+      ->excludes("--stable");
+}
+
+sim::PhysicsCheck MakePhysicsCheck(const SamplingArgs& args) {
+  // The numbers were checked by PositiveNumber; --stable and --settle exclude each other.
+  sim::PhysicsCheck check;
+  if (!args.stable_s.empty()) check.stable_s = std::stod(args.stable_s);
+  check.stable_move_m = args.stable_move_m;
+  check.stable_turn_deg = args.stable_turn_deg;
+  if (!args.settle_s.empty()) check.settle_s = std::stod(args.settle_s);
+  return check;
 }
 
 std::optional<sim::StabilityOptions> MakeStabilityOptions(const SamplingArgs& args) {
@@ -209,9 +226,7 @@ sampling::SampleOptions MakeSampleOptions(const SamplingArgs& args) {
   sampling::SampleOptions options;
   options.max_attempts = args.max_attempts;
   options.run.mode = args.naive ? lang::SamplingMode::kNaive : lang::SamplingMode::kRegion;
-  if (const std::optional<sim::StabilityOptions> stable = MakeStabilityOptions(args)) {
-    options.accept = sim::MakeStabilityTest(*stable);
-  }
+  options.accept = sim::MakePhysicsTest(MakePhysicsCheck(args));
   return options;
 }
 

@@ -16,7 +16,7 @@
 #include "lang/lang.h"
 #include "sampling/batch.h"
 #include "sampling/sampler.h"
-#include "sim/stability.h"
+#include "sim/settle.h"
 
 namespace prs::cli {
 
@@ -47,15 +47,18 @@ struct SamplingArgs {
   std::string stable_s;
   double stable_move_m = 0.01;
   double stable_turn_deg = 5;
+  /// --settle[=T]: the simulated seconds scenes get to come to rest, as given ("3" for a bare
+  /// --settle); empty when off.
+  std::string settle_s;
 };
 
-/// The physics check of --stable, when it was given.
-std::optional<sim::StabilityOptions> MakeStabilityOptions(const SamplingArgs& args);
+/// The physics check of --stable or --settle (sim::MakePhysicsTest makes it).
+sim::PhysicsCheck MakePhysicsCheck(const SamplingArgs& args);
 
 /// Adds FILE, -I and -p to `command`.
 void AddScenarioOptions(CLI::App& command, ScenarioArgs& args);
 /// Adds -s, --threads, --naive, --max-attempts and --stable[=T], --stable-move,
-/// --stable-turn to `command`.
+/// --stable-turn, --settle[=T] to `command`.
 void AddSamplingOptions(CLI::App& command, SamplingArgs& args);
 /// Which scenes a command makes: -n N (at least `min_count`) and --start I.
 struct SceneRangeArgs {

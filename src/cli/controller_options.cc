@@ -67,6 +67,7 @@ std::vector<std::string> MakeScenarioWords(const ScenarioArgs& scenario,
       words.insert(words.end(), {"--stable-turn", fmt::format("{}", sampling.stable_turn_deg)});
     }
   }
+  if (!sampling.settle_s.empty()) words.push_back("--settle=" + sampling.settle_s);
   return words;
 }
 

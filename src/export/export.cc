@@ -81,6 +81,7 @@ ExportScene MakeExportScene(const lang::Scene& scene, std::string title) {
     for (const auto& [name, value] : object.properties) facts.properties.emplace_back(name, value);
     out.bodies.push_back(internal::MakeBody(facts, names, out.warnings));
   }
+  out.settled = scene.settled_s.has_value();
   return out;
 }
 

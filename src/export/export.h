@@ -80,6 +80,10 @@ struct ExportScene {
   /// Properties the rules could not read (an unknown colour name, a mass that is not a
   /// positive number), one sentence each naming the object; the body falls back to a default.
   std::vector<std::string> warnings;
+  /// A scene --settle let come to rest (lang::Scene::settled_s), or one being settled: the MJCF
+  /// carries the contact model it was settled with, elliptic friction cones with impratio 10,
+  /// which keeps a pile from creeping (docs/physics.md).
+  bool settled = false;
 };
 
 /// Applies the export rules (docs/export.md) to a sampled scene. Never throws for odd

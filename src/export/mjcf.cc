@@ -8,6 +8,7 @@
 
 #include <cmath>
 #include <map>
+#include <algorithm>
 #include <optional>
 #include <utility>
 
@@ -139,6 +140,19 @@ void AppendBody(const Body& body, MeshAssets& assets, std::string& out) {
   out += "    </body>\n";
 }
 
+// MuJoCo 2.2 keeps room for 100 contacts and 500 constraint rows unless told otherwise; a pile
+// of free bodies touches in more places than that, and contacts past the room are dropped
+// (bodies then sink into each other). Room for 20 contacts a free body, each of 4 rows.
+std::string SizeElement(const ExportScene& scene) {
+  int free_bodies = 0;
+  for (const Body& body : scene.bodies) free_bodies += body.is_free() && body.collides;
+  constexpr int kContactsPerFreeBody = 20, kRowsPerContact = 4;
+  if (free_bodies * kContactsPerFreeBody <= 100) return "";
+  const int contacts = free_bodies * kContactsPerFreeBody;
+  return fmt::format("  <size nconmax=\"{}\" njmax=\"{}\"/>\n", contacts,
+                     std::max(500, contacts * kRowsPerContact));
+}
+
 }  // namespace
 
 std::string WriteMjcf(const ExportScene& scene) {
@@ -149,11 +163,12 @@ std::string WriteMjcf(const ExportScene& scene) {
       "<!-- ProbRobScene scene {}: load with mujoco.MjModel.from_xml_path or `simulate` -->\n"
       "<mujoco model=\"prs_scene\">\n"
       "  <compiler angle=\"radian\" autolimits=\"true\"/>\n"
-      "  <option gravity=\"0 0 {}\"/>\n{}"
+      "  <option gravity=\"0 0 {}\"{}/>\n{}{}"
       "  <worldbody>\n"
       "    <light name=\"sun\" pos=\"0 0 5\" dir=\"0 0 -1\" directional=\"true\"/>\n"
       "    <geom name=\"ground\" type=\"plane\" size=\"0 0 0.05\" rgba=\"0.9 0.9 0.9 1\"/>\n",
       scene.title, FormatNumber(-kGravity),
+      scene.settled ? " cone=\"elliptic\" impratio=\"10\"" : "", SizeElement(scene),
       assets.text().empty() ? "" : "  <asset>\n" + assets.text() + "  </asset>\n");
   out += bodies;
   out += "  </worldbody>\n</mujoco>\n";

@@ -155,6 +155,7 @@ ExportScene ReadSceneJson(std::string_view line) {
   out.title = fmt::format("seed {} index {}", number_text(seed), number_text(index));
   if (seed.is_number_unsigned()) out.seed = seed.get<uint64_t>();
   if (index.is_number_unsigned()) out.index = index.get<uint64_t>();
+  out.settled = scene.contains("settled_s");
   internal::NameTable names;
   for (size_t i = 0; i < objects.size(); ++i)
     out.bodies.push_back(ReadBody(objects[i], int(i), names, out.warnings));

@@ -214,6 +214,7 @@ struct PassStmt {};
 struct RequireStmt {
   ExprPtr condition;
   ExprPtr probability;  // null for a hard requirement
+  bool settled = false;  // `require settled`: checked on the scene at rest (--settle)
 };
 struct ParamStmt {
   std::vector<std::pair<Identifier, ExprPtr>> params;

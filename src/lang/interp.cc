@@ -26,6 +26,7 @@ const char* RejectionKindName(RejectionKind kind) {
     case RejectionKind::kOccluded: return "occluded";
     case RejectionKind::kVisible: return "visible";
     case RejectionKind::kUnstable: return "unstable";
+    case RejectionKind::kUnsettled: return "unsettled";
   }
   return "unknown";
 }
@@ -257,6 +258,10 @@ void Interpreter::ExecRequire(const RequireStmt& node, SourceSpan span) {
            "a requirement's probability must be between 0 and 1, got " + FormatNumber(p));
     }
     if (DrawUniform(0, 1, node.probability->span, "require[p]") >= p) return;  // not enforced in this scene
+  }
+  if (node.settled) {
+    RecordSettledRequirement(node, span);
+    return;
   }
   if (Truthy(Eval(*node.condition), node.condition->span)) return;
   const LineColumn where = program_.sources.CalcLineColumn(span.file, span.begin);

@@ -99,10 +99,15 @@ struct OpenTurnCheck {
   geometry::ConvexRegion box_region;  // where the whole box must lie
 };
 
+/// Whether the object (its mesh's hull, or its box) lies in `region` within `tolerance` metres.
+bool ObjectInRegion(const geometry::ConvexRegion& region, const SceneObject& o, double tolerance);
+
 class Interpreter {
  public:
   Interpreter(const CompiledProgram& program, geometry::Rng& rng, const RunOptions& options);
   AttemptResult Run();
+  /// lang::CheckSettledScene (settled.cc).
+  static std::optional<Rejection> CheckSettled(const Scene& settled);
   static bool IsSameInEveryScene(const Value& value);
   static bool IsSameInEveryScene(const Env& env);
 
@@ -147,6 +152,9 @@ class Interpreter {
   Flow ExecWhile(const WhileStmt& node, SourceSpan span);
   void ExecAssign(const AssignStmt& node, SourceSpan span);
   void ExecRequire(const RequireStmt& node, SourceSpan span);
+  // --- requirements on the settled scene (settled.cc) ---
+  void RecordSettledRequirement(const RequireStmt& node, SourceSpan span);
+  std::optional<Rejection> CheckSettledRequirement(const SettledRequirement& requirement);
   void ExecParam(const ParamStmt& node);
   void RunModule(int module_index);
   void Bind(const std::string& name, Value value);

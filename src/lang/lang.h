@@ -144,6 +144,18 @@ struct RunOptions {
   bool move_on_regions = true;
 };
 
+/// What must still hold once a simulator has let the scene's free bodies come to rest
+/// (--settle, sim/settle.h), checked on `settled`: every object inside the workspace, within
+/// 5 mm (soft contacts sink that far), and every `require settled` the attempt ran. The
+/// rejection (kind kUnsettled) naming the object or the statement, or nullopt. Throws
+/// ScenarioError for errors in a requirement (a random draw, a type error).
+std::optional<Rejection> CheckSettledScene(const Scene& settled);
+
+/// Moves an object to a new pose (a simulator's rest pose), keeping its properties consistent:
+/// `position`, `orientation`, and `yaw`, `pitch`, `roll` relative to the same base
+/// orientation. The object is no longer `fixed`.
+void MoveObject(SceneObject& o, const Eigen::Vector3d& p_WO, const Eigen::Quaterniond& R_WO);
+
 /// The outcome of one attempt: a scene, or the reason it was rejected.
 using AttemptResult = std::variant<Scene, Rejection>;
 

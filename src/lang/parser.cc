@@ -443,13 +443,18 @@ StmtPtr Parser::ParseReturn() {
   return std::make_unique<Stmt>(Stmt{SpanFrom(t.span.begin), std::move(stmt)});
 }
 
-// require_stmt := 'require' ['[' expr ']'] expr
+// require_stmt := 'require' ['[' expr ']'] ['settled'] expr
+// (`settled` followed by an expression is the keyword; `require settled` alone reads a name.)
 StmtPtr Parser::ParseRequire() {
   uint32_t begin = Advance().span.begin;
   RequireStmt stmt;
   if (Match(TK::kLBracket)) {
     stmt.probability = ParseExpr();
     Expect(TK::kRBracket, " after the requirement's probability");
+  }
+  if (CheckWord("settled") && CanStartExpression(Peek(1))) {
+    Advance();
+    stmt.settled = true;
   }
   if (!CanStartExpression(Peek())) {
     FailAtToken(fmt::format("expected an expression after 'require', found {}",

@@ -8,6 +8,7 @@
 #include <memory>
 #include <optional>
 #include <string>
+#include <unordered_map>
 #include <utility>
 #include <vector>
 
@@ -17,6 +18,8 @@
 namespace prs::lang {
 
 struct ClassInfo;
+struct CompiledProgram;
+struct Expr;
 
 /// An object's properties in definition order. Copies share one list until one of them is
 /// changed (copy on write), so an object a sampler copies unchanged into every scene
@@ -91,6 +94,17 @@ struct PlacedRegion {
   std::vector<geometry::ConvexRegion> pieces_W;  // world frame, disjoint interiors
 };
 
+/// A `require settled` statement the attempt ran (docs/language.md): checked by
+/// CheckSettledScene once a simulator has let the scene come to rest (--settle).
+struct SettledRequirement {
+  const CompiledProgram* program = nullptr;  // must outlive the scene, as its classes do
+  int module = 0;
+  const Expr* condition = nullptr;
+  SourceSpan span;  // the statement
+  /// The names the statement saw when it ran (a loop variable's value of that iteration).
+  std::shared_ptr<const std::unordered_map<std::string, Value>> names;
+};
+
 struct Scene {
   std::vector<SceneObject> objects;
   std::vector<std::pair<std::string, Value>> params;
@@ -98,6 +112,11 @@ struct Scene {
   RegionPtr workspace;
   /// Filled only when RunOptions::record_regions is set.
   std::vector<PlacedRegion> regions;
+  /// The attempt's `require settled` statements, in the order they ran.
+  std::vector<SettledRequirement> settled_requirements;
+  /// Set once a simulator has moved the free bodies to where they come to rest (--settle):
+  /// the simulated seconds that took.
+  std::optional<double> settled_s;
 };
 
 /// Why an attempt was rejected. Reasons are grouped by `kind` and `culprit` for accounting.
@@ -112,6 +131,7 @@ enum class RejectionKind {
   kOccluded,          // `visible from`: another object hides (part of) the object from the camera
   kVisible,           // `not visible from`: the camera sees the object's centre
   kUnstable,          // --stable: a free body moved or turned under gravity (sim/stability.h)
+  kUnsettled,         // --settle: the scene at rest breaks a `require settled` or the workspace
 };
 
 struct Rejection {

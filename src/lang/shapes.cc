@@ -108,8 +108,11 @@ geometry::ConvexRegion Interpreter::ErodeByOwnShape(const geometry::ConvexRegion
 
 bool Interpreter::RegionContainsObject(const geometry::ConvexRegion& region, int index,
                                        double tolerance) const {
-  const SceneObject& o = scene_.objects[index];
-  if (!o.mesh) return region.ContainsBox(BoxOf(index), tolerance);
+  return ObjectInRegion(region, scene_.objects[index], tolerance);
+}
+
+bool ObjectInRegion(const geometry::ConvexRegion& region, const SceneObject& o, double tolerance) {
+  if (!o.mesh) return region.ContainsBox({o.p_WO, o.R_WO.toRotationMatrix(), o.dimensions / 2}, tolerance);
   const Eigen::Matrix3d R = o.R_WO.toRotationMatrix();
   std::vector<Vector3d> hull_W;
   hull_W.reserve(o.mesh->hull_O.size());

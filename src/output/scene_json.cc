@@ -298,6 +298,11 @@ void AppendHeader(const sampling::SampledScene& sampled, Out& out) {
     first = false;
   }
   out += '}';
+  // --settle: the simulated seconds the free bodies took to come to rest (docs/physics.md).
+  if (sampled.scene.settled_s) {
+    fmt::format_to(std::back_inserter(out), FMT_COMPILE(",\"settled_s\":{:.3f}"),
+                   *sampled.scene.settled_s);
+  }
 }
 
 void AppendParams(const lang::Scene& scene, Out& out) {

@@ -39,11 +39,12 @@ class AttemptPoints {
 };
 
 /// A test a scene must pass after the program's own, handed down by the stage that owns it (a
-/// physics check: sim/stability.h): the rejection, or nullopt to accept. A failed test rejects
-/// the attempt like any other reason, so the accepted scenes are the program's scenes
-/// conditioned on passing it. Must be thread-safe and a pure function of the scene, so that
-/// scenes stay the same for any thread count.
-using SceneTest = std::function<std::optional<lang::Rejection>(const lang::Scene&)>;
+/// physics check: sim/stability.h, sim/settle.h): the rejection, or nullopt to accept. A
+/// failed test rejects the attempt like any other reason, so the accepted scenes are the
+/// program's scenes conditioned on passing it. A test may also change the scene it accepts
+/// (--settle moves the free bodies to where they come to rest). Must be thread-safe and a pure
+/// function of the scene, so that scenes stay the same for any thread count.
+using SceneTest = std::function<std::optional<lang::Rejection>(lang::Scene&)>;
 
 struct SampleOptions {
   lang::RunOptions run;

@@ -16,6 +16,13 @@ constexpr double kRestSpeed_m_s = 0.005;   // a free body slower than this ...
 constexpr double kRestSpin_rad_s = 0.05;   // ... and turning slower than this ...
 constexpr double kRestWindow_s = 0.1;      // ... for this long is at rest
 constexpr double kFirstRestCheck_s = 0.1;  // (not before: every body starts at rest)
+// Settling: a pile's bodies never all stand still (MuJoCo 2.2 touches round and mesh shapes at
+// one point, and they rock in place), so rest is judged by where they are, as BlenderProc
+// judges it: every free body within this distance and angle of where it was a window before
+// (BlenderProc checks 1 cm and 0.1 rad, every 2 s).
+constexpr double kSettleWindow_s = 0.5;
+constexpr double kSettleMove_m = 0.01;
+constexpr double kSettleTurn_rad = 0.1;
 
 // One free body's free joint in the model.
 struct FreeJoint {
@@ -54,10 +61,38 @@ BodyMotion MeasureMotion(const FreeJoint& j, const mjData& data) {
   return m;
 }
 
+// MeasureMotion with where the object's frame ended (the body's frame moved with it).
+BodyMotion MeasureEnd(const FreeJoint& j, const exporting::Body& body, const mjData& data) {
+  BodyMotion m = MeasureMotion(j, data);
+  const mjtNum* q = data.qpos + j.qpos;
+  const Eigen::Quaterniond R_WB(Eigen::Quaterniond(q[3], q[4], q[5], q[6]).normalized());
+  const Eigen::Quaterniond R_BO = j.q0.conjugate() * body.R_WO;  // the object in the body
+  const Eigen::Vector3d p_BO = j.q0.conjugate() * (body.p_WO - j.p0);
+  m.p_end_WO = Eigen::Vector3d(q[0], q[1], q[2]) + R_WB * p_BO;
+  m.R_end_WO = (R_WB * R_BO).normalized();
+  return m;
+}
+
 bool IsMoving(const FreeJoint& j, const mjData& data) {
   const mjtNum* v = data.qvel + j.qvel;
   return Eigen::Vector3d(v[0], v[1], v[2]).norm() > kRestSpeed_m_s ||
          Eigen::Vector3d(v[3], v[4], v[5]).norm() > kRestSpin_rad_s;
+}
+
+// Settling: whether every free body is within kSettleMove_m and kSettleTurn_rad of its pose
+// in `window_qpos`; sets how far each moved.
+bool IsStillSince(const std::vector<FreeJoint>& joints, const std::vector<mjtNum>& window_qpos,
+                  const mjData& data, std::vector<double>& moved_m) {
+  bool still = true;
+  for (size_t k = 0; k < joints.size(); ++k) {
+    const mjtNum* q0 = window_qpos.data() + joints[k].qpos;
+    const mjtNum* q = data.qpos + joints[k].qpos;
+    moved_m[k] = Eigen::Vector3d(q[0] - q0[0], q[1] - q0[1], q[2] - q0[2]).norm();
+    const double turn = Eigen::Quaterniond(q0[3], q0[4], q0[5], q0[6]).normalized().angularDistance(
+        Eigen::Quaterniond(q[3], q[4], q[5], q[6]).normalized());
+    still &= moved_m[k] < kSettleMove_m && turn < kSettleTurn_rad;
+  }
+  return still;
 }
 
 bool IsPastTolerance(const BodyMotion& m, const StabilityOptions& options) {
@@ -98,7 +133,7 @@ void CheckStabilityOptions(const StabilityOptions& options) {
 }
 
 StabilityReport SimulateUnderGravity(const exporting::ExportScene& scene,
-                                     const StabilityOptions& options) {
+                                     const StabilityOptions& options, bool stop_past_tolerance) {
   CheckStabilityOptions(options);
   StabilityReport report;
   bool any_free = false;
@@ -118,12 +153,27 @@ StabilityReport SimulateUnderGravity(const exporting::ExportScene& scene,
   const std::vector<FreeJoint> joints = FindFreeJoints(scene, *model);
   const int steps = static_cast<int>(std::ceil(options.duration_s / model->opt.timestep));
   double resting_since_s = 0;
+  // Settling: the poses at the start of the current window, and how far each body went in the
+  // last whole window (for naming the one still moving when time runs out).
+  std::vector<mjtNum> window_qpos(data->qpos, data->qpos + model->nq);
+  double window_start_s = 0;
+  std::vector<double> window_move_m(joints.size(), 0);
   for (int step = 0; step < steps; ++step) {
     mj_step(model.get(), data.get());
     const double t = data->time;
+    if (!stop_past_tolerance) {
+      if (t - window_start_s < kSettleWindow_s - 1e-9) continue;
+      if (IsStillSince(joints, window_qpos, *data, window_move_m)) {
+        report.at_rest = true;
+        break;
+      }
+      window_qpos.assign(data->qpos, data->qpos + model->nq);
+      window_start_s = t;
+      continue;
+    }
     bool moving = false;
     for (size_t k = 0; k < joints.size(); ++k) {
-      if (IsPastTolerance(MeasureMotion(joints[k], *data), options)) {
+      if (stop_past_tolerance && IsPastTolerance(MeasureMotion(joints[k], *data), options)) {
         report.culprit = static_cast<int>(k);
         break;
       }
@@ -137,14 +187,19 @@ StabilityReport SimulateUnderGravity(const exporting::ExportScene& scene,
     }
   }
   report.simulated_s = data->time;
-  for (const FreeJoint& j : joints) report.free_bodies.push_back(MeasureMotion(j, *data));
+  for (const FreeJoint& j : joints) {
+    report.free_bodies.push_back(MeasureEnd(j, scene.bodies[j.object], *data));
+  }
   if (report.culprit < 0 && !report.at_rest) {
-    // Time ran out with something still moving: the fastest is to blame.
+    // Time ran out with something still moving: the fastest (settling: the one that went
+    // furthest in the last window) is to blame.
     report.culprit = 0;
     for (size_t k = 1; k < report.free_bodies.size(); ++k) {
-      if (report.free_bodies[k].speed_m_s > report.free_bodies[report.culprit].speed_m_s) {
-        report.culprit = static_cast<int>(k);
-      }
+      const bool further = stop_past_tolerance
+                               ? report.free_bodies[k].speed_m_s >
+                                     report.free_bodies[report.culprit].speed_m_s
+                               : window_move_m[k] > window_move_m[report.culprit];
+      if (further) report.culprit = static_cast<int>(k);
     }
   }
   return report;

@@ -54,28 +54,42 @@ TEST_F(PrsTest, CampaignShardsMergeIntoOneMachinesRun) {
   EXPECT_NE(r.err.find("prs campaign init"), std::string::npos) << r.err;
 }
 
-// --stable at init is kept in the spec, and each shard applies it: the merged scenes are
-// `prs sample --stable`'s (a cube drawn up to 1.5 cm above the table, the higher draws rejected).
-TEST_F(PrsTest, CampaignShardsKeepStable) {
-  const std::string file = Write("drop.prs",
-                                 "from model import *\nt = Table on V3D(0, 0, 0)\n"
-                                 "d = Cube at V3D((-0.8, -0.6), 0.3, (0.825, 0.84))\n");
-  const std::string dir = (dir_ / "campaign").string();
-  Result r = Run({"campaign", "init", dir, file, "-I", Example(""), "-n", "12", "--shard-size",
-                  "5", "-s", "4", "--stable=0.5"});
-  ASSERT_EQ(r.exit_code, 0) << r.err;
-  for (const char* k : {"2", "0", "1"}) {
-    r = Run({"campaign", "run-shard", dir, k, "--threads", "2"});
+// --stable or --settle at init is kept in the spec, and each shard applies it: the merged
+// scenes are `prs sample`'s with the same option. --stable: a cube drawn up to 1.5 cm above the
+// table, the higher draws rejected; --settle: a cube dropped near the table's edge, the scenes
+// where it falls off rejected.
+TEST_F(PrsTest, CampaignShardsKeepStableAndSettle) {
+  const auto expect_campaign_matches_sample = [&](const std::string& file,
+                                                  const std::string& option,
+                                                  const std::string& rejection) {
+    const std::string dir = (dir_ / ("campaign" + option)).string();
+    const std::vector<std::string> scenario = {file, "-I", Example(""), "-s", "4", option};
+    std::vector<std::string> init = {"campaign", "init", dir, "-n", "12", "--shard-size", "5"};
+    init.insert(init.end(), scenario.begin(), scenario.end());
+    Result r = Run(init);
     ASSERT_EQ(r.exit_code, 0) << r.err;
-  }
-  const std::string merged = (dir_ / "merged.jsonl").string();
-  r = Run({"campaign", "merge", dir, "-o", merged});
-  ASSERT_EQ(r.exit_code, 0) << r.err;
-  const Result single =
-      Run({"sample", file, "-I", Example(""), "-n", "12", "-s", "4", "--stable=0.5"});
-  ASSERT_EQ(single.exit_code, 0) << single.err;
-  EXPECT_EQ(ReadText(merged), single.out);
-  EXPECT_NE(single.out.find("\"unstable\""), std::string::npos) << "no scene was rejected";
+    for (const char* k : {"2", "0", "1"}) {
+      r = Run({"campaign", "run-shard", dir, k, "--threads", "2"});
+      ASSERT_EQ(r.exit_code, 0) << r.err;
+    }
+    const std::string merged = (dir_ / "merged.jsonl").string();
+    r = Run({"campaign", "merge", dir, "-o", merged});
+    ASSERT_EQ(r.exit_code, 0) << r.err;
+    std::vector<std::string> sample = {"sample", "-n", "12"};
+    sample.insert(sample.end(), scenario.begin(), scenario.end());
+    const Result single = Run(sample);
+    ASSERT_EQ(single.exit_code, 0) << single.err;
+    EXPECT_EQ(ReadText(merged), single.out);
+    EXPECT_NE(single.out.find("\"" + rejection + "\""), std::string::npos) << "none rejected";
+  };
+  expect_campaign_matches_sample(
+      Write("drop.prs", "from model import *\nt = Table on V3D(0, 0, 0)\n"
+                        "d = Cube at V3D((-0.8, -0.6), 0.3, (0.825, 0.84))\n"),
+      "--stable=0.5", "unstable");
+  expect_campaign_matches_sample(
+      Write("fall.prs", "from model import *\nt = Table on V3D(0, 0, 0)\n"
+                        "c = Cube at V3D((0.85, 0.95), 0, 1.2)\nrequire settled c.z > 0.5\n"),
+      "--settle", "unsettled");
 }
 
 TEST_F(PrsTest, CampaignSlurmScriptRunsTheUnfinishedShards) {

@@ -250,17 +250,9 @@ TEST_F(PrsTest, StableKeepsTheScenesAtRestForAnyThreadCount) {
   const std::string file = Write("drop.prs", kDropProgram);
   const std::vector<std::string> args = {"sample", file, "-I", Example(""), "-n", "20", "-s", "4",
                                          "--stable"};
-  std::string outputs[2];
-  for (const int threads : {1, 2}) {
-    std::vector<std::string> with = args;
-    with.insert(with.end(), {"--threads", std::to_string(threads)});
-    const Result r = Run(with);
-    ASSERT_EQ(r.exit_code, 0) << r.err;
-    outputs[threads - 1] = r.out;
-  }
-  EXPECT_EQ(outputs[0], outputs[1]);
+  const std::string output = RunOnOneAndTwoThreads(args);
   int rejected = 0;
-  for (const std::string& line : SplitLines(outputs[0])) {
+  for (const std::string& line : SplitLines(output)) {
     const json scene = json::parse(line);
     EXPECT_LE(scene["objects"][2]["position"][2].get<double>(), 0.825 + 0.0105);  // d
     if (scene["rejections"].contains("unstable")) {
@@ -299,6 +291,47 @@ TEST_F(PrsTest, StableIsInTheRegenerateCommand) {
   const json record = json::parse(ReadText(dir_ / "r.jsonl"));
   const std::string command = record["regenerate"];
   EXPECT_NE(command.find(" --stable=0.5 "), std::string::npos) << command;
+}
+
+// --settle: cubes drawn in the air above the table's edge come to rest; those that fall off
+// (below 0.5 m) break the `require settled` and are drawn again, counted as "unsettled". The
+// scenes carry "settled_s", are the same for any thread count, and the regenerate command
+// keeps --settle; --settle with --stable is a usage error.
+const char kFallProgram[] =
+    "from model import *\n"
+    "t = Table on V3D(0, 0, 0)\n"
+    "c = Cube at V3D((0.85, 0.95), 0, 1.2)\n"
+    "require settled c.z > 0.5\n";
+
+TEST_F(PrsTest, SettleWritesTheScenesAtRestForAnyThreadCount) {
+  const std::string file = Write("fall.prs", kFallProgram);
+  const std::string output =
+      RunOnOneAndTwoThreads({"sample", file, "-I", Example(""), "-n", "8", "-s", "3", "--settle"});
+  int rejected = 0;
+  for (const std::string& line : SplitLines(output)) {
+    const json scene = json::parse(line);
+    EXPECT_GT(scene["settled_s"].get<double>(), 0.3);
+    const json& c = scene["objects"][1];
+    EXPECT_NEAR(c["position"][2].get<double>(), 0.825, 0.004);  // on the table top
+    if (scene["rejections"].contains("unsettled")) {
+      rejected += scene["rejections"]["unsettled"].get<int>();
+    }
+  }
+  EXPECT_GT(rejected, 0);
+  const Result stats =
+      Run({"stats", file, "-I", Example(""), "-n", "8", "-s", "3", "--settle", "--json"});
+  ASSERT_EQ(stats.exit_code, 0) << stats.err;
+  EXPECT_EQ(json::parse(stats.out)["rejections"]["by_reason"]["unsettled"], rejected);
+  const Result both = Run({"sample", file, "-I", Example(""), "--settle", "--stable"});
+  EXPECT_EQ(both.exit_code, 2);
+  EXPECT_NE(both.err.find("excludes"), std::string::npos) << both.err;
+  const Result bad = Run({"sample", file, "-I", Example(""), "--settle=-1"});
+  EXPECT_EQ(bad.exit_code, 2);
+  const Result record = Run({"test", file, "-I", Example(""), "--exec", "exit 3", "-n", "1", "-s",
+                             "3", "--settle=1.5", "-o", (dir_ / "r.jsonl").string()});
+  ASSERT_EQ(record.exit_code, 0) << record.err;
+  const std::string command = json::parse(ReadText(dir_ / "r.jsonl"))["regenerate"];
+  EXPECT_NE(command.find(" --settle=1.5 "), std::string::npos) << command;
 }
 
 TEST_F(PrsTest, StatsTableLocatesTheCulprit) {

@@ -77,6 +77,21 @@ class PrsTest : public testing::Test {
     return result;
   }
 
+  // Runs `prs ARGS... --threads T` for T = 1 and 2, checks that both succeed with the same
+  // output, and returns the first's.
+  std::string RunOnOneAndTwoThreads(const std::vector<std::string>& args) {
+    std::string outputs[2];
+    for (const int threads : {1, 2}) {
+      std::vector<std::string> with = args;
+      with.insert(with.end(), {"--threads", std::to_string(threads)});
+      const Result r = Run(with);
+      EXPECT_EQ(r.exit_code, 0) << r.err;
+      outputs[threads - 1] = r.out;
+    }
+    EXPECT_EQ(outputs[0], outputs[1]);
+    return outputs[0];
+  }
+
   fs::path dir_;
 };
 

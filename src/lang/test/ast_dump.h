@@ -139,7 +139,8 @@ inline std::string Dump(const Stmt& s) {
         else if constexpr (std::is_same_v<T, ContinueStmt>) return "(continue)";
         else if constexpr (std::is_same_v<T, PassStmt>) return "(pass)";
         else if constexpr (std::is_same_v<T, RequireStmt>) {
-          return fmt::format("(require {} {})", DumpOpt(n.probability), Dump(*n.condition));
+          return fmt::format("(require{} {} {})", n.settled ? " settled" : "",
+                             DumpOpt(n.probability), Dump(*n.condition));
         } else if constexpr (std::is_same_v<T, ParamStmt>) {
           std::string out = "(param";
           for (const auto& [name, v] : n.params) out += " " + name.name + "=" + Dump(*v);

@@ -219,6 +219,12 @@ TEST(ParserTest, Requirements) {
   EXPECT_EQ(DumpProgram("require (right tr_1).x + 0.2 < table.x\n"),
             "(require null (< (+ (. (side right tr_1) x) 0.2) (. table x)))");
   EXPECT_EQ(DumpProgram("require[0.5] c.x > 0\n"), "(require 0.5 (> (. c x) 0))");
+  // `settled` followed by an expression is the keyword; alone, or before an operator, a name.
+  EXPECT_EQ(DumpProgram("require settled c.z > 0.5\n"), "(require settled null (> (. c z) 0.5))");
+  EXPECT_EQ(DumpProgram("require[0.5] settled (c.z > 0.5)\n"),
+            "(require settled 0.5 (> (. c z) 0.5))");
+  EXPECT_EQ(DumpProgram("require settled\n"), "(require null settled)");
+  EXPECT_EQ(DumpProgram("require settled and ok\n"), "(require null (and settled ok))");
 }
 
 TEST(ParserTest, ForLoopWithCreation) {
