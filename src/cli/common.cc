@@ -195,15 +195,6 @@ sim::PhysicsCheck MakePhysicsCheck(const SamplingArgs& args) {
   return check;
 }
 
-std::optional<sim::StabilityOptions> MakeStabilityOptions(const SamplingArgs& args) {
-  if (args.stable_s.empty()) return std::nullopt;
-  sim::StabilityOptions options;
-  options.duration_s = std::stod(args.stable_s);  // checked by PositiveNumber
-  options.max_move_m = args.stable_move_m;
-  options.max_turn_rad = args.stable_turn_deg * M_PI / 180;
-  return options;
-}
-
 int CountHardwareThreads() { return std::max(1u, std::thread::hardware_concurrency()); }
 
 std::unique_ptr<lang::CompiledProgram> CompileScenario(const ScenarioArgs& args) {
