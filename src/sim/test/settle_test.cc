@@ -12,6 +12,7 @@
 #include "geometry/rotation.h"
 #include "sampling/sampler.h"
 #include "sim/mujoco_model.h"
+#include "sim/test/stays_put.h"
 
 namespace prs::sim {
 namespace {
@@ -157,17 +158,8 @@ TEST(SettleTest, SettledScenesStayPutAndAreTheSameEveryTime) {
     EXPECT_EQ(a.scene.objects[i].p_WO, b.scene.objects[i].p_WO);
     EXPECT_EQ(a.scene.objects[i].R_WO.coeffs(), b.scene.objects[i].R_WO.coeffs());
   }
-  const ModelPtr model = LoadModelFromXml(exporting::WriteScene(
-      exporting::MakeExportScene(a.scene, "t"), exporting::Format::kMjcf));
-  const DataPtr data = MakeData(*model);
-  mj_forward(model.get(), data.get());
-  std::vector<Eigen::Vector3d> p_start;
-  for (int body = 0; body < model->nbody; ++body) p_start.emplace_back(data->xpos + 3 * body);
-  while (data->time < 1.0) mj_step(model.get(), data.get());
-  for (int body = 1; body < model->nbody; ++body) {
-    EXPECT_LT((Eigen::Vector3d(data->xpos + 3 * body) - p_start[body]).norm(), 0.005)
-        << mj_id2name(model.get(), mjOBJ_BODY, body);
-  }
+  testing_scenes::ExpectExportStaysPut(exporting::MakeExportScene(a.scene, "t"), 1.0, 0.005,
+                                       "four cubes");
 }
 
 // examples/bin_pile.prs settled: 25 objects drawn in the air above a bin end inside it (their
@@ -207,13 +199,7 @@ TEST(SettleTest, TheBinPileEndsInsideTheBinAtRest) {
     EXPECT_GT(contact.dist, -0.008) << mj_id2name(model.get(), mjOBJ_GEOM, contact.geom1) << " and "
                                     << mj_id2name(model.get(), mjOBJ_GEOM, contact.geom2);
   }
-  std::vector<Eigen::Vector3d> p_start;
-  for (int body = 0; body < model->nbody; ++body) p_start.emplace_back(data->xpos + 3 * body);
-  while (data->time < 0.5) mj_step(model.get(), data.get());
-  for (int body = 1; body < model->nbody; ++body) {
-    EXPECT_LT((Eigen::Vector3d(data->xpos + 3 * body) - p_start[body]).norm(), 0.01)
-        << mj_id2name(model.get(), mjOBJ_BODY, body);
-  }
+  testing_scenes::ExpectExportStaysPut(exported, 0.5, 0.01, "the pile");
 }
 
 }  // namespace

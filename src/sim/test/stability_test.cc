@@ -12,6 +12,7 @@
 
 #include "sampling/sampler.h"
 #include "sim/mujoco_model.h"
+#include "sim/test/stays_put.h"
 #include "sim/test/table_cube_scenes.h"
 
 namespace prs::sim {
@@ -122,19 +123,8 @@ TEST(StabilityTest, AcceptedScenesStayPutInMujocoForTwoSeconds) {
     options.accept = MakeStabilityTest({});
     for (uint64_t index = 0; index < 4; ++index) {
       const lang::Scene scene = sampling::SampleScene(*program, 7, index, options).scene;
-      const exporting::ExportScene exported = exporting::MakeExportScene(scene, "t");
-      const ModelPtr model =
-          LoadModelFromXml(exporting::WriteScene(exported, exporting::Format::kMjcf));
-      const DataPtr data = MakeData(*model);
-      mj_forward(model.get(), data.get());
-      std::vector<Eigen::Vector3d> p_start;
-      for (int b = 0; b < model->nbody; ++b) p_start.emplace_back(data->xpos + 3 * b);
-      while (data->time < 2.0) mj_step(model.get(), data.get());
-      for (int b = 1; b < model->nbody; ++b) {
-        const Eigen::Vector3d p_end(data->xpos + 3 * b);
-        EXPECT_LT((p_end - p_start[b]).norm(), 0.01)
-            << name << " scene " << index << " body " << mj_id2name(model.get(), mjOBJ_BODY, b);
-      }
+      testing_scenes::ExpectExportStaysPut(exporting::MakeExportScene(scene, "t"), 2.0, 0.01,
+                                           std::string(name) + " scene " + std::to_string(index));
       ++accepted;
     }
   }
