@@ -18,6 +18,12 @@
 namespace prs::exporting::internal {
 namespace {
 
+// Rolling friction of a free can's side (AppendCylinderSpine), in metres: a lying can stays put
+// on a slope under atan(1 mm / r), about 1.7° for a 66 mm can. More than a metal can meets on a
+// hard floor (tenths of a millimetre); the least of those tried that stopped the cans of
+// examples/bin_pile.prs rolling in place (0.1 mm did not).
+constexpr double kCanRollingFriction_m = 0.001;
+
 std::string FormatQuaternion(const Eigen::Quaterniond& R) {  // MuJoCo's order: w x y z
   return FormatNumber(R.w()) + " " + FormatNumber(R.x()) + " " + FormatNumber(R.y()) + " " +
          FormatNumber(R.z());
@@ -81,8 +87,8 @@ std::string FormatGeomType(const Body& body) {
 // MuJoCo 2.2 touches a cylinder and a box at one point, so an upright can on a table rocks
 // and tilts by several degrees. A box inscribed in the cylinder (a square of side r·√2, the
 // cylinder's height; hidden, group 3) gives its flat ends the box-box collider's several
-// contacts. It lies inside the cylinder, so it never touches anything first elsewhere: a can
-// on its side still rolls. Free bodies carry an explicit inertial, so it adds no mass.
+// contacts. It lies inside the cylinder, so it never touches anything first elsewhere. Free
+// bodies carry an explicit inertial, so it adds no mass.
 void AppendCylinderFoot(const Body& body, std::string& out) {
   const double half_side = body.cylinder_radius() / std::sqrt(2.0);
   fmt::format_to(std::back_inserter(out),
@@ -90,6 +96,22 @@ void AppendCylinderFoot(const Body& body, std::string& out) {
                  "rgba=\"{}\"/>\n",
                  body.name, FormatNumber(half_side), FormatNumber(half_side),
                  FormatNumber(body.size.z() / 2), FormatRgba(body.color));
+}
+
+// A free can on its side touches a box at one point too, and nothing stops it rolling: in a pile
+// it jitters and rolls in place for as long as it is simulated. A capsule inscribed along the
+// cylinder's axis (its radius, ending at the flat ends; hidden) lies along its side, so a lying
+// can gets the capsule-box collider's two contacts, and rolling friction (condim 6) stops it as
+// a real can stops. A squat cylinder (no longer than its diameter) has no such capsule; it lies
+// on a flat end.
+void AppendCylinderSpine(const Body& body, std::string& out) {
+  const double radius = body.cylinder_radius(), half_length = body.size.z() / 2 - radius;
+  if (half_length <= 0) return;
+  fmt::format_to(std::back_inserter(out),
+                 "      <geom name=\"{}_spine\" type=\"capsule\" size=\"{} {}\" condim=\"6\" "
+                 "friction=\"1 0.005 {}\" group=\"3\" rgba=\"{}\"/>\n",
+                 body.name, FormatNumber(radius), FormatNumber(half_length),
+                 FormatNumber(kCanRollingFriction_m), FormatRgba(body.color));
 }
 
 // A MuJoCo camera looks along its -z with +y up; a scene's camera looks along its forward +y
@@ -129,7 +151,10 @@ void AppendBody(const Body& body, MeshAssets& assets, std::string& out) {
     fmt::format_to(std::back_inserter(out), "      <geom name=\"{}\" {} rgba=\"{}\"{}/>\n",
                    body.name, FormatGeomType(body), FormatRgba(body.color),
                    body.collides ? "" : " contype=\"0\" conaffinity=\"0\"");
-    if (body.shape == Shape::kCylinder && body.collides) AppendCylinderFoot(body, out);
+    if (body.shape == Shape::kCylinder && body.collides) {
+      AppendCylinderFoot(body, out);
+      if (body.is_free()) AppendCylinderSpine(body, out);
+    }
   }
   if (IsCamera(body)) {
     fmt::format_to(std::back_inserter(out),

@@ -3,6 +3,7 @@
 
 #include <fmt/format.h>
 
+#include <algorithm>
 #include <cmath>
 #include <stdexcept>
 
@@ -19,8 +20,10 @@ constexpr double kFirstRestCheck_s = 0.1;  // (not before: every body starts at 
 // Settling: a pile's bodies never all stand still (MuJoCo 2.2 touches round and mesh shapes at
 // one point, and they rock in place), so rest is judged by where they are, as BlenderProc
 // judges it: every free body within this distance and angle of where it was a window before
-// (BlenderProc checks 1 cm and 0.1 rad, every 2 s).
+// (BlenderProc checks 1 cm and 0.1 rad, every 2 s). The window slides: poses are kept every
+// kSettleCheck_s, and each new one is compared with the one a window before.
 constexpr double kSettleWindow_s = 0.5;
+constexpr double kSettleCheck_s = 0.1;
 constexpr double kSettleMove_m = 0.01;
 constexpr double kSettleTurn_rad = 0.1;
 
@@ -149,31 +152,37 @@ StabilityReport SimulateUnderGravity(const exporting::ExportScene& scene,
     throw std::runtime_error(std::string("the physics model of the scene cannot be simulated: ") +
                              error.what());
   }
+  if (options.timestep_s > 0) model->opt.timestep = options.timestep_s;
   const DataPtr data = MakeData(*model);
   const std::vector<FreeJoint> joints = FindFreeJoints(scene, *model);
   const int steps = static_cast<int>(std::ceil(options.duration_s / model->opt.timestep));
   double resting_since_s = 0;
-  // Settling: the poses at the start of the current window, and how far each body went in the
-  // last whole window (for naming the one still moving when time runs out).
-  std::vector<mjtNum> window_qpos(data->qpos, data->qpos + model->nq);
-  double window_start_s = 0;
+  // Settling: the poses every kSettleCheck_s (a ring a window long, the oldest first to be
+  // overwritten), and how far each body went in the last window compared (for naming the one
+  // still moving when time runs out).
+  const int check_steps =
+      std::max(1, static_cast<int>(std::lround(kSettleCheck_s / model->opt.timestep)));
+  const int window_checks = static_cast<int>(std::lround(kSettleWindow_s / kSettleCheck_s));
+  std::vector<std::vector<mjtNum>> ring(window_checks,
+                                        std::vector<mjtNum>(data->qpos, data->qpos + model->nq));
   std::vector<double> window_move_m(joints.size(), 0);
-  for (int step = 0; step < steps; ++step) {
+  for (int step = 1; step <= steps; ++step) {
     mj_step(model.get(), data.get());
     const double t = data->time;
     if (!stop_past_tolerance) {
-      if (t - window_start_s < kSettleWindow_s - 1e-9) continue;
-      if (IsStillSince(joints, window_qpos, *data, window_move_m)) {
+      if (step % check_steps != 0) continue;
+      std::vector<mjtNum>& window_start = ring[(step / check_steps) % window_checks];
+      if (step / check_steps >= window_checks &&
+          IsStillSince(joints, window_start, *data, window_move_m)) {
         report.at_rest = true;
         break;
       }
-      window_qpos.assign(data->qpos, data->qpos + model->nq);
-      window_start_s = t;
+      window_start.assign(data->qpos, data->qpos + model->nq);
       continue;
     }
     bool moving = false;
     for (size_t k = 0; k < joints.size(); ++k) {
-      if (stop_past_tolerance && IsPastTolerance(MeasureMotion(joints[k], *data), options)) {
+      if (IsPastTolerance(MeasureMotion(joints[k], *data), options)) {
         report.culprit = static_cast<int>(k);
         break;
       }

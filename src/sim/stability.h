@@ -21,6 +21,7 @@ struct StabilityOptions {
   double duration_s = 1.0;             // simulated time at most
   double max_move_m = 0.01;            // a free body whose centre moves further is unstable
   double max_turn_rad = 0.0872664626;  // ... or that turns further (5°)
+  double timestep_s = 0;               // physics step; 0: the model's (MuJoCo's 2 ms)
 };
 
 /// Throws std::invalid_argument naming the option when a value is not a positive finite
@@ -48,12 +49,14 @@ struct StabilityReport {
   int culprit = -1;
 };
 
-/// Simulates `scene` under gravity (MuJoCo, 2 ms steps) as described above. Deterministic.
+/// Simulates `scene` under gravity (MuJoCo, 2 ms steps unless options say) as described above.
+/// Deterministic.
 /// A scene without a free body is not simulated (at rest at once). Throws std::runtime_error
 /// with MuJoCo's message when it refuses the model. With `stop_past_tolerance` false (for
 /// settling, sim/settle.h) only rest or the time limit stops it, the tolerances are unused, and
 /// rest is judged by position: every free body within 1 cm and 0.1 rad of where it was 0.5 s
-/// before (round and mesh shapes rock in place in MuJoCo 2.2 and are never still).
+/// before, checked every 0.1 s (round and mesh shapes rock in place in MuJoCo 2.2 and are
+/// never still).
 StabilityReport SimulateUnderGravity(const exporting::ExportScene& scene,
                                      const StabilityOptions& options,
                                      bool stop_past_tolerance = true);

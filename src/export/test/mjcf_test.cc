@@ -255,5 +255,37 @@ TEST(MjcfTest, ObjectsInMidAirAreNotCountedAsResting) {
   EXPECT_EQ(resting, (std::vector<bool>{false, true, false}));
 }
 
+// A free can (longer than its diameter) gets a hidden capsule along its side with rolling
+// friction, so that it lies still on its side; a squat free cylinder and a static one do not.
+TEST(MjcfTest, FreeCansGetACapsuleAlongTheirSide) {
+  ExportScene scene;
+  const auto cylinder = [](const char* name, double height_m, double mass_kg) {
+    Body body;
+    body.name = name;
+    body.shape = Shape::kCylinder;
+    body.size = Eigen::Vector3d(0.066, 0.066, height_m);
+    body.p_WO = Eigen::Vector3d(0, 0, 1);
+    body.mass_kg = mass_kg;
+    body.inertia_diag = Eigen::Vector3d::Constant(1e-4);
+    return body;
+  };
+  scene.bodies = {cylinder("can", 0.12, 0.3), cylinder("puck", 0.05, 0.3),
+                  cylinder("post", 0.12, 0)};
+  std::string error;
+  const ModelPtr model = LoadMjcf(WriteScene(scene, Format::kMjcf), error);
+  ASSERT_NE(model, nullptr) << error;
+  const int spine = mj_name2id(model.get(), mjOBJ_GEOM, "can_spine");
+  ASSERT_GE(spine, 0);
+  EXPECT_EQ(model->geom_type[spine], mjGEOM_CAPSULE);
+  EXPECT_DOUBLE_EQ(model->geom_size[3 * spine], 0.033);             // the can's radius
+  EXPECT_DOUBLE_EQ(model->geom_size[3 * spine + 1], 0.06 - 0.033);  // ends at its flat ends
+  EXPECT_EQ(model->geom_condim[spine], 6);
+  EXPECT_DOUBLE_EQ(model->geom_friction[3 * spine + 2], 0.001);  // rolling, metres
+  EXPECT_EQ(model->geom_group[spine], 3);
+  EXPECT_LT(mj_name2id(model.get(), mjOBJ_GEOM, "puck_spine"), 0);
+  EXPECT_LT(mj_name2id(model.get(), mjOBJ_GEOM, "post_spine"), 0);
+  EXPECT_GE(mj_name2id(model.get(), mjOBJ_GEOM, "post_foot"), 0);
+}
+
 }  // namespace
 }  // namespace prs::exporting

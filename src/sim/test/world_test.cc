@@ -47,6 +47,20 @@ TEST(WorldTest, EveryObjectIsWhereTheSceneSaysAndArmsStandOnRobots) {
   }
 }
 
+// The world of a settled scene keeps MuJoCo's default contact model (pyramidal cones, impratio
+// 1), though the scene's own export carries the elliptic cones it was settled with.
+TEST(WorldTest, SettledScenesAreSimulatedInTheSameContactModel) {
+  lang::Scene scene = SampleTableCube(0);
+  scene.settled_s = 0.5;
+  const exporting::ExportScene exported = exporting::MakeExportScene(scene, "test");
+  ASSERT_TRUE(exported.settled);
+  const ModelPtr own = LoadModelFromXml(exporting::WriteScene(exported, exporting::Format::kMjcf));
+  EXPECT_EQ(own->opt.cone, mjCONE_ELLIPTIC);
+  const World world = BuildWorld(exported);
+  EXPECT_EQ(world.model->opt.cone, mjCONE_PYRAMIDAL);
+  EXPECT_EQ(world.model->opt.impratio, 1);
+}
+
 TEST(WorldTest, TheArmMountIsTheRobotBoxsBottomFaceForAnyHeightAndYaw) {
   for (const double height : kRobotHeights_m) {
     for (const double yaw : kRobotYaws_rad) {
