@@ -31,6 +31,7 @@ CommandRunner ConfigureRenderCommand(CLI::App& command);
 CommandRunner ConfigureTestCommand(CLI::App& command);
 CommandRunner ConfigureSearchCommand(CLI::App& command);
 CommandRunner ConfigureReportCommand(CLI::App& command);
+CommandRunner ConfigureCompareCommand(CLI::App& command);
 CommandRunner ConfigureCampaignCommand(CLI::App& command);
 
 }  // namespace prs::cli

@@ -25,6 +25,8 @@ const std::vector<Command>& CommandTable() {
       {"test", "run a controller in sampled scenes, tabulate outcomes", ConfigureTestCommand},
       {"search", "search for scenes where a controller fails (ce, anneal)", ConfigureSearchCommand},
       {"report", "a failure report from episode records: what separates failures", ConfigureReportCommand},
+      {"compare", "two runs of the same scenes, before and after a change: fixed, broken, McNemar",
+       ConfigureCompareCommand},
       {"campaign", "a run cut into shards for many machines: init, run-shard, status, merge",
        ConfigureCampaignCommand},
   };

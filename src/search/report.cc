@@ -177,6 +177,13 @@ std::vector<ReportRecord> ParseReportRecords(const std::vector<std::string>& lin
     r.line = static_cast<int64_t>(n + 1);
     r.index = j["index"].get<uint64_t>();
     r.outcome = j["outcome"].get<std::string>();
+    const auto text = [&](const char* key) {
+      return j.contains(key) && j[key].is_string() ? j[key].get<std::string>() : std::string();
+    };
+    if (j.contains("seed") && j["seed"].is_number_unsigned()) r.seed = j["seed"].get<uint64_t>();
+    r.detail = text("detail");
+    r.regenerate = text("regenerate");
+    r.spec = text("spec");
     if (j.contains("score") && j["score"].is_number()) r.score = j["score"].get<double>();
     if (j.contains("coordinates") && j["coordinates"].is_array()) {
       for (const auto& x : j["coordinates"]) {
@@ -190,9 +197,7 @@ std::vector<ReportRecord> ParseReportRecords(const std::vector<std::string>& lin
         }
       }
     }
-    if (j.contains("saved_scene") && j["saved_scene"].is_string()) {
-      r.saved_scene = j["saved_scene"].get<std::string>();
-    }
+    r.saved_scene = text("saved_scene");
     records.push_back(std::move(r));
   }
   if (records.empty()) throw std::runtime_error(path + ": no episode records");

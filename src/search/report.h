@@ -15,8 +15,12 @@ namespace prs::search {
 /// One episode record as a report reads it.
 struct ReportRecord {
   int64_t line = 0;  // 1-based line in the results file
+  std::optional<uint64_t> seed;  // none in records written before seeds were recorded
   uint64_t index = 0;
   std::string outcome;
+  std::string detail;
+  std::string regenerate;  // the command that writes the scene again (failures only)
+  std::string spec;        // the program's fingerprint (scenes at coordinates only)
   std::optional<double> score;
   std::vector<double> coordinates;
   std::vector<std::pair<std::string, double>> features;  // as recorded

@@ -1,8 +1,11 @@
-// End-to-end tests of `prs search`, `--design`, `--near`, `prs report` and `prs check
+// End-to-end tests of `prs search`, `--design`, `--near`, `prs report`, `prs compare` and `prs check
 // --coordinates`: records with coordinates, scores and generations, the same for any thread
 // count; designs change scenes but keep them valid and reproducible; reports name the cause;
 // and bad requests exit with a message to act on.
 #include <nlohmann/json.hpp>
+
+#include <map>
+#include <tuple>
 
 #include "cli/test/json_lines.h"
 #include "cli/test/prs_test_fixture.h"
@@ -184,6 +187,61 @@ TEST_F(PrsTest, ReportNamesWhereTheControllerFails) {
   EXPECT_EQ(r.exit_code, 1);
   EXPECT_NE(r.err.find("bad.jsonl:2: not an episode record"), std::string::npos) << r.err;
   r = Run({"report", (dir_ / "missing.jsonl").string()});
+  EXPECT_EQ(r.exit_code, 1);
+}
+
+// prs compare: two controllers on the same scenes (the 1 % planted failure before, the 0.1 %
+// one after), matched scene by scene; the counts are checked against the records themselves.
+TEST_F(PrsTest, CompareMatchesTheScenesAndCountsFixedAndBroken) {
+  const std::string before = (dir_ / "before.jsonl").string();
+  const std::string after = (dir_ / "after.jsonl").string();
+  const std::string other = (dir_ / "other.jsonl").string();
+  for (const auto& [controller, out, seed] :
+       {std::tuple{"planted-1-percent", before, "3"}, std::tuple{"planted-1-permille", after, "3"},
+        std::tuple{"planted-1-permille", other, "4"}}) {
+    const Result r = Run({"test", Example("table_cube.prs"), "--controller", controller, "-n",
+                          "2000", "-s", seed, "-o", out});
+    ASSERT_EQ(r.exit_code, 0) << r.err;
+  }
+  int64_t fixed = 0, broke = 0;
+  std::map<uint64_t, bool> failed_before;
+  for (const nlohmann::json& j : ReadRecords(before)) {
+    failed_before[j["index"].get<uint64_t>()] = j["outcome"] != "success";
+  }
+  for (const nlohmann::json& j : ReadRecords(after)) {
+    const bool failed = j["outcome"] != "success";
+    fixed += failed_before.at(j["index"].get<uint64_t>()) && !failed;
+    broke += !failed_before.at(j["index"].get<uint64_t>()) && failed;
+  }
+  ASSERT_GT(fixed, 5);  // the 1 % disk fails about 20 of 2,000 scenes
+
+  Result r = Run({"compare", before, after, "--json"});
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  const nlohmann::json j = nlohmann::json::parse(r.out);
+  EXPECT_EQ(j["scenes"], 2000);
+  EXPECT_EQ(j["mcnemar"]["fixed"], fixed);
+  EXPECT_EQ(j["mcnemar"]["broke"], broke);
+  EXPECT_EQ(j["fixed"].size(), static_cast<size_t>(fixed));
+  EXPECT_LT(j["mcnemar"]["p"].get<double>(), 0.05);
+  ASSERT_FALSE(j["fixed"].empty());
+  // A fixed scene's regenerate command comes from the failing run's record.
+  EXPECT_NE(j["fixed"][0]["regenerate"].get<std::string>().find("-s 3 --start "),
+            std::string::npos);
+
+  const std::string md = (dir_ / "compare.md").string();
+  r = Run({"compare", before, after, "-o", md});
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  EXPECT_NE(ReadText(md).find("**" + std::to_string(fixed) + " fixed**"), std::string::npos);
+  EXPECT_NE(r.err.find("2000 scenes compared"), std::string::npos) << r.err;
+
+  // Bad input: other scenes, a file that is not records, a missing file.
+  r = Run({"compare", before, other});
+  EXPECT_EQ(r.exit_code, 1);
+  EXPECT_NE(r.err.find("before.jsonl:1: seed 3 index 0 is not in "), std::string::npos) << r.err;
+  r = Run({"compare", before, Write("scenes.jsonl", "[1, 2]\n")});
+  EXPECT_EQ(r.exit_code, 1);
+  EXPECT_NE(r.err.find("scenes.jsonl:1: not an episode record"), std::string::npos) << r.err;
+  r = Run({"compare", before, (dir_ / "missing.jsonl").string()});
   EXPECT_EQ(r.exit_code, 1);
 }
 
