@@ -112,7 +112,7 @@ World BuildWorld(exporting::ExportScene scene) {
   // A controller is tested in one contact model, MuJoCo's default, whether or not its scenes
   // were settled: a settled scene's export carries the elliptic cones it was settled with, and
   // under them 7 of 100 Table-Cube hand-overs that succeed in the scene as drawn let the cube
-  // slip (seed 1), though settling moved it by a millimetre. A failure must come from the scene,
+  // slip (seed 1), though settling moved it by 0.2 mm. A failure must come from the scene,
   // not from a physics model that changed with it.
   scene.settled = false;
   World world;

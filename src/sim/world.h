@@ -62,8 +62,9 @@ inline constexpr double kDefaultPickTargetDensity_kg_m3 = 1000;
 /// choose the mass; otherwise leaves it and returns nullopt. A point (no volume) is left too.
 std::optional<std::string> MakePickTargetFree(exporting::Body& body);
 
-/// Compiles the world and puts each arm in its ready pose. Throws std::runtime_error when
-/// MuJoCo rejects the model.
+/// Compiles the world and puts each arm in its ready pose. The world keeps MuJoCo's default
+/// contact model even for a settled scene (`scene.settled` is ignored; docs/physics.md). Throws
+/// std::runtime_error when MuJoCo rejects the model.
 World BuildWorld(exporting::ExportScene scene);
 
 }  // namespace prs::sim
