@@ -15,6 +15,8 @@
 #include <sstream>
 #include <thread>
 
+#include "output/line_writer.h"
+
 namespace prs::cli {
 namespace {
 
@@ -288,6 +290,12 @@ bool IsBlankLine(std::string_view line) {
 void PrintNoScenes(const std::string& path) {
   PrintError(
       fmt::format("{} has no scenes: it is empty (write one with prs sample -o FILE)", path));
+}
+
+void WriteTextFile(const std::string& path, const std::string& text) {
+  output::LineWriter file(path);
+  file.AddLine(std::string_view(text).substr(0, text.empty() ? 0 : text.size() - 1));
+  file.Commit();
 }
 
 }  // namespace prs::cli

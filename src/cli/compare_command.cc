@@ -9,7 +9,6 @@
 
 #include "cli/commands.h"
 #include "cli/common.h"
-#include "output/line_writer.h"
 #include "search/compare.h"
 
 namespace prs::cli {
@@ -36,9 +35,7 @@ int RunCompare(const CompareArgs& args) {
       std::cout << text << std::flush;
       return kExitSuccess;
     }
-    output::LineWriter file(args.output);
-    file.AddLine(text.substr(0, text.size() - 1));
-    file.Commit();
+    WriteTextFile(args.output, text);
     PrintNote(fmt::format("{} scenes compared ({} fixed, {} broken, McNemar p = {:.4g}); written "
                           "to {}",
                           comparison.scenes.size(), comparison.fixed.size(),

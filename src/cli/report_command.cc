@@ -9,7 +9,6 @@
 
 #include "cli/commands.h"
 #include "cli/common.h"
-#include "output/line_writer.h"
 #include "search/report.h"
 
 namespace prs::cli {
@@ -44,14 +43,8 @@ int RunReport(const ReportArgs& args) {
       std::cout << markdown << std::flush;
       return kExitSuccess;
     }
-    if (!svg.empty()) {
-      output::LineWriter plot(options.svg_path);
-      plot.AddLine(svg.substr(0, svg.size() - 1));
-      plot.Commit();
-    }
-    output::LineWriter report(args.output);
-    report.AddLine(markdown.substr(0, markdown.size() - 1));
-    report.Commit();
+    if (!svg.empty()) WriteTextFile(options.svg_path, svg);
+    WriteTextFile(args.output, markdown);
     PrintNote(fmt::format("report of {} written to {}{}", FormatCount(records.size(), "episode"),
                           args.output, svg.empty() ? "" : " (plot: " + options.svg_path + ")"));
     return kExitSuccess;

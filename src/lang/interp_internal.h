@@ -99,6 +99,8 @@ struct OpenTurnCheck {
   geometry::ConvexRegion box_region;  // where the whole box must lie
 };
 
+/// The object's box in the world: its centre, orientation and half its dimensions.
+geometry::OrientedBox BoxOfObject(const SceneObject& o);
 /// Whether the object (its mesh's hull, or its box) lies in `region` within `tolerance` metres.
 bool ObjectInRegion(const geometry::ConvexRegion& region, const SceneObject& o, double tolerance);
 

@@ -210,9 +210,12 @@ void Interpreter::FinishObject(int index, SourceSpan span) {
   CheckCollisions(index);
 }
 
-geometry::OrientedBox Interpreter::BoxOf(int index) const {
-  const SceneObject& o = scene_.objects[index];
+geometry::OrientedBox BoxOfObject(const SceneObject& o) {
   return {o.p_WO, o.R_WO.toRotationMatrix(), o.dimensions / 2};
+}
+
+geometry::OrientedBox Interpreter::BoxOf(int index) const {
+  return BoxOfObject(scene_.objects[index]);
 }
 
 std::string Interpreter::DescribeBox(int index) const {

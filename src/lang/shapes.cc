@@ -112,7 +112,7 @@ bool Interpreter::RegionContainsObject(const geometry::ConvexRegion& region, int
 }
 
 bool ObjectInRegion(const geometry::ConvexRegion& region, const SceneObject& o, double tolerance) {
-  if (!o.mesh) return region.ContainsBox({o.p_WO, o.R_WO.toRotationMatrix(), o.dimensions / 2}, tolerance);
+  if (!o.mesh) return region.ContainsBox(BoxOfObject(o), tolerance);
   const Eigen::Matrix3d R = o.R_WO.toRotationMatrix();
   std::vector<Vector3d> hull_W;
   hull_W.reserve(o.mesh->hull_O.size());

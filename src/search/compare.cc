@@ -60,12 +60,13 @@ void CheckSameScene(const ReportRecord& before, const std::string& before_path,
       before.coordinates != after.coordinates) {
     refuse("its scene coordinates differ");
   }
+  const std::map<std::string, double> after_features(after.features.begin(),
+                                                     after.features.end());
   for (const auto& [name, value] : before.features) {
-    for (const auto& [other_name, other_value] : after.features) {
-      if (name != other_name) continue;
-      if (std::abs(value - other_value) > 1e-9 * std::max(1.0, std::abs(value))) {
-        refuse(fmt::format("{} is {} before and {} after", name, value, other_value));
-      }
+    const auto other = after_features.find(name);
+    if (other == after_features.end()) continue;
+    if (std::abs(value - other->second) > 1e-9 * std::max(1.0, std::abs(value))) {
+      refuse(fmt::format("{} is {} before and {} after", name, value, other->second));
     }
   }
 }

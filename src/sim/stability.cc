@@ -122,6 +122,89 @@ std::string DescribeMotion(const BodyMotion& m, const StabilityOptions& options,
   return "stayed put";
 }
 
+// A scene's physics model being stepped, with its free bodies.
+struct Simulation {
+  ModelPtr model;
+  DataPtr data;
+  std::vector<FreeJoint> joints;
+  int steps = 0;  // the most steps options.duration_s allows
+};
+
+Simulation StartSimulation(const exporting::ExportScene& scene, const StabilityOptions& options) {
+  Simulation s;
+  try {
+    s.model = LoadModelFromXml(exporting::WriteScene(scene, exporting::Format::kMjcf));
+  } catch (const std::runtime_error& error) {
+    throw std::runtime_error(std::string("the physics model of the scene cannot be simulated: ") +
+                             error.what());
+  }
+  if (options.timestep_s > 0) s.model->opt.timestep = options.timestep_s;
+  s.data = MakeData(*s.model);
+  s.joints = FindFreeJoints(scene, *s.model);
+  s.steps = static_cast<int>(std::ceil(options.duration_s / s.model->opt.timestep));
+  return s;
+}
+
+// --stable: steps until every free body has been at rest (by velocity) for kRestWindow_s, or
+// one moved past the tolerance (its index the culprit). When time runs out, the fastest is.
+void StepUntilStillOrPastTolerance(Simulation& s, const StabilityOptions& options,
+                                   StabilityReport& report) {
+  const mjModel& model = *s.model;
+  mjData& data = *s.data;
+  double resting_since_s = 0;
+  for (int step = 0; step < s.steps; ++step) {
+    mj_step(&model, &data);
+    bool moving = false;
+    for (size_t k = 0; k < s.joints.size(); ++k) {
+      if (IsPastTolerance(MeasureMotion(s.joints[k], data), options)) {
+        report.culprit = static_cast<int>(k);
+        return;
+      }
+      moving |= IsMoving(s.joints[k], data);
+    }
+    if (moving || data.time < kFirstRestCheck_s) resting_since_s = data.time;
+    if (data.time - resting_since_s >= kRestWindow_s) {
+      report.at_rest = true;
+      return;
+    }
+  }
+  report.culprit = 0;
+  for (size_t k = 1; k < s.joints.size(); ++k) {
+    if (MeasureMotion(s.joints[k], data).speed_m_s >
+        MeasureMotion(s.joints[report.culprit], data).speed_m_s) {
+      report.culprit = static_cast<int>(k);
+    }
+  }
+}
+
+// --settle: steps until every free body is where it was a window before (by position, checked
+// every kSettleCheck_s). When time runs out, the one that went furthest in the last window
+// compared is the culprit.
+void StepUntilSettled(Simulation& s, StabilityReport& report) {
+  const mjModel& model = *s.model;
+  mjData& data = *s.data;
+  const int check_steps =
+      std::max(1, static_cast<int>(std::lround(kSettleCheck_s / model.opt.timestep)));
+  const int window_checks = static_cast<int>(std::lround(kSettleWindow_s / kSettleCheck_s));
+  // The poses of the last window_checks checks, the oldest next to be compared and overwritten.
+  std::vector<std::vector<mjtNum>> ring(window_checks,
+                                        std::vector<mjtNum>(data.qpos, data.qpos + model.nq));
+  std::vector<double> window_move_m(s.joints.size(), 0);
+  for (int step = 1; step <= s.steps; ++step) {
+    mj_step(&model, &data);
+    if (step % check_steps != 0) continue;
+    const int check = step / check_steps;
+    std::vector<mjtNum>& window_start = ring[check % window_checks];
+    if (check >= window_checks && IsStillSince(s.joints, window_start, data, window_move_m)) {
+      report.at_rest = true;
+      return;
+    }
+    window_start.assign(data.qpos, data.qpos + model.nq);
+  }
+  report.culprit = static_cast<int>(
+      std::max_element(window_move_m.begin(), window_move_m.end()) - window_move_m.begin());
+}
+
 }  // namespace
 
 void CheckStabilityOptions(const StabilityOptions& options) {
@@ -145,71 +228,15 @@ StabilityReport SimulateUnderGravity(const exporting::ExportScene& scene,
     report.at_rest = true;
     return report;
   }
-  ModelPtr model;
-  try {
-    model = LoadModelFromXml(exporting::WriteScene(scene, exporting::Format::kMjcf));
-  } catch (const std::runtime_error& error) {
-    throw std::runtime_error(std::string("the physics model of the scene cannot be simulated: ") +
-                             error.what());
+  Simulation simulation = StartSimulation(scene, options);
+  if (stop_past_tolerance) {
+    StepUntilStillOrPastTolerance(simulation, options, report);
+  } else {
+    StepUntilSettled(simulation, report);
   }
-  if (options.timestep_s > 0) model->opt.timestep = options.timestep_s;
-  const DataPtr data = MakeData(*model);
-  const std::vector<FreeJoint> joints = FindFreeJoints(scene, *model);
-  const int steps = static_cast<int>(std::ceil(options.duration_s / model->opt.timestep));
-  double resting_since_s = 0;
-  // Settling: the poses every kSettleCheck_s (a ring a window long, the oldest first to be
-  // overwritten), and how far each body went in the last window compared (for naming the one
-  // still moving when time runs out).
-  const int check_steps =
-      std::max(1, static_cast<int>(std::lround(kSettleCheck_s / model->opt.timestep)));
-  const int window_checks = static_cast<int>(std::lround(kSettleWindow_s / kSettleCheck_s));
-  std::vector<std::vector<mjtNum>> ring(window_checks,
-                                        std::vector<mjtNum>(data->qpos, data->qpos + model->nq));
-  std::vector<double> window_move_m(joints.size(), 0);
-  for (int step = 1; step <= steps; ++step) {
-    mj_step(model.get(), data.get());
-    const double t = data->time;
-    if (!stop_past_tolerance) {
-      if (step % check_steps != 0) continue;
-      std::vector<mjtNum>& window_start = ring[(step / check_steps) % window_checks];
-      if (step / check_steps >= window_checks &&
-          IsStillSince(joints, window_start, *data, window_move_m)) {
-        report.at_rest = true;
-        break;
-      }
-      window_start.assign(data->qpos, data->qpos + model->nq);
-      continue;
-    }
-    bool moving = false;
-    for (size_t k = 0; k < joints.size(); ++k) {
-      if (IsPastTolerance(MeasureMotion(joints[k], *data), options)) {
-        report.culprit = static_cast<int>(k);
-        break;
-      }
-      moving |= IsMoving(joints[k], *data);
-    }
-    if (report.culprit >= 0) break;
-    if (moving || t < kFirstRestCheck_s) resting_since_s = t;
-    if (t - resting_since_s >= kRestWindow_s) {
-      report.at_rest = true;
-      break;
-    }
-  }
-  report.simulated_s = data->time;
-  for (const FreeJoint& j : joints) {
-    report.free_bodies.push_back(MeasureEnd(j, scene.bodies[j.object], *data));
-  }
-  if (report.culprit < 0 && !report.at_rest) {
-    // Time ran out with something still moving: the fastest (settling: the one that went
-    // furthest in the last window) is to blame.
-    report.culprit = 0;
-    for (size_t k = 1; k < report.free_bodies.size(); ++k) {
-      const bool further = stop_past_tolerance
-                               ? report.free_bodies[k].speed_m_s >
-                                     report.free_bodies[report.culprit].speed_m_s
-                               : window_move_m[k] > window_move_m[report.culprit];
-      if (further) report.culprit = static_cast<int>(k);
-    }
+  report.simulated_s = simulation.data->time;
+  for (const FreeJoint& j : simulation.joints) {
+    report.free_bodies.push_back(MeasureEnd(j, scene.bodies[j.object], *simulation.data));
   }
   return report;
 }
