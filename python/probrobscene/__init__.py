@@ -7,22 +7,36 @@
 
 Scene ``i`` of seed ``s`` is the scene ``prs sample -s s --start i`` prints, on any machine and
 any number of threads. Units are metres and radians. See docs/python.md.
+
+``serve`` (your controller as a ``prs test --exec`` worker) is pure Python: from the sources
+alone, without the compiled module ``_core``, the package imports with ``serve`` and the errors.
 """
+
+from __future__ import annotations  # the hints name compiled classes, absent without _core
 
 import json
 import numbers
 import os
 from typing import Any, Dict, Iterable, Iterator, List, Mapping, Optional, Sequence, Union
 
-from . import _core
-from ._core import (Scenario, Scene, SceneObject, dimensions, positions, quaternions,
-                    yaw_pitch_roll)
 from ._errors import SamplingError, ScenarioError
+from .serve import serve
+
+try:  # `from ._core import` first: unlike `from . import _core`, it raises ModuleNotFoundError
+    from ._core import (Scenario, Scene, SceneObject, dimensions, positions, quaternions,
+                        yaw_pitch_roll)
+    from . import _core
+    _BUILT = True
+except ModuleNotFoundError as missing:
+    if missing.name != f"{__name__}._core":
+        raise  # something the compiled module needs (numpy) is missing: say that
+    _BUILT = False
 
 __version__ = "0.1.0"
 __all__ = [
     "load", "loads", "Scenario", "Scene", "SceneObject", "ScenarioError", "SamplingError",
     "positions", "dimensions", "quaternions", "yaw_pitch_roll", "search", "report", "campaign",
+    "read_scenes", "test", "serve",
 ]
 
 PathLike = Union[str, "os.PathLike[str]"]
@@ -141,7 +155,8 @@ def _scenes(self: Scenario, seed: int = 0, start: int = 0, count: Optional[int] 
         index += n
 
 
-Scenario.scenes = _scenes
+if _BUILT:
+    Scenario.scenes = _scenes
 
 
 def search(scenario: Scenario, controller, budget: int, strategy: str = "ce", seed: int = 0,
@@ -174,4 +189,70 @@ def report(records: Union[PathLike, Iterable[Mapping[str, Any]]]) -> str:
     return _core.report_markdown([json.dumps(r) for r in records], "<records>")
 
 
-from . import campaign  # noqa: E402  (probrobscene.campaign.run: shards on a Dask cluster)
+def read_scenes(path: PathLike) -> List[Scene]:
+    """The scenes of a scenes file (``prs sample -o``, a ``--save-failures`` file), or of every
+    ``*.json``/``*.jsonl`` file in a directory (then in seed and index order), as ``Scene``s
+    that export, render and pass to controllers like sampled ones, as ``prs test PATH`` reads
+    them. A Scene read back knows its objects' class names but not the classes' ancestry.
+
+    Raises:
+        ValueError: ``"PATH:LINE: what is wrong"`` for a line that is not a scene, or when
+            there is no scene at all.
+    """
+    path = os.fspath(path)
+    if os.path.isdir(path):
+        files = sorted(os.path.join(path, f) for f in os.listdir(path)
+                       if f.endswith((".json", ".jsonl", ".ndjson"))
+                       and os.path.isfile(os.path.join(path, f)))
+    else:
+        files = [path]
+    scenes: List[Scene] = []
+    for file in files:
+        with open(file, encoding="utf-8") as f:
+            scenes += _core.read_scene_lines(f.read().splitlines(), file)
+    if os.path.isdir(path):
+        scenes.sort(key=lambda s: (s.seed, s.index))
+    if not scenes:
+        raise ValueError(f"{path} holds no scene")
+    return scenes
+
+
+def test(scenes: Union[PathLike, Iterable[Scene]], controller=None, *, exec: Optional[str] = None,
+         persistent: bool = False, timeout: float = 60.0, startup_timeout: float = 120.0,
+         threads: int = 1) -> List[Dict[str, Any]]:
+    """Runs a controller in each of ``scenes`` (Scenes, or a path for :func:`read_scenes`), as
+    ``prs test SCENES.jsonl`` does, and returns one record per scene (dicts, as ``prs test -o``
+    writes them, each with its scene's seed and index), in the scenes' order.
+
+    ``controller`` is a function of a Scene that returns an outcome name or a dict with
+    ``"outcome"`` (and optionally ``"detail"``, ``"score"``, anything else), as for
+    :func:`search` (it runs on one thread); or the name of a built-in controller
+    (``"table-cube"``), run on ``threads`` threads. Or give ``exec``, a shell command
+    (docs/harness.md), with ``persistent=True`` started once per thread (``--persistent``,
+    ``startup_timeout`` seconds for its handshake) and ``timeout`` seconds per episode.
+
+    Raises:
+        ValueError: Not exactly one controller, or an unknown built-in name.
+        RuntimeError: A persistent worker that cannot start (the message says why).
+    """
+    if isinstance(scenes, (str, os.PathLike)):
+        scenes = read_scenes(scenes)
+    return _core.test_scenes(list(scenes), controller, exec or "", persistent, float(timeout),
+                             float(startup_timeout), threads)
+
+
+if _BUILT:
+    from . import campaign  # noqa: E402  (probrobscene.campaign.run: shards on a Dask cluster)
+else:
+    _NEEDS_CORE = set(__all__) - {"serve", "ScenarioError", "SamplingError"} | {"_core"}
+    __all__[:] = ["serve", "ScenarioError", "SamplingError"]  # in place: linters read the above
+    del load, loads, search, report, read_scenes, test
+
+    def __getattr__(name: str) -> Any:
+        """The compiled API, asked for where it is not built: an ImportError that says so."""
+        if name in _NEEDS_CORE:
+            raise ImportError(f"probrobscene.{name}: the compiled module probrobscene._core is "
+                              f"not built beside {os.path.dirname(__file__)} (build or install "
+                              f"the package: docs/python.md); only probrobscene.serve works "
+                              f"without it")
+        raise AttributeError(f"module {__name__!r} has no attribute {name!r}")

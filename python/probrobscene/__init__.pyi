@@ -108,6 +108,15 @@ def search(scenario: Scenario, controller: Callable[[Scene], Union[str, Mapping[
            budget: int, strategy: str = "ce", seed: int = 0,
            batch: Optional[int] = None) -> List[Dict[str, Any]]: ...
 def report(records: Union[PathLike, Iterable[Mapping[str, Any]]]) -> str: ...  # Markdown
+def read_scenes(path: PathLike) -> List[Scene]: ...  # a scenes file, or a directory of them
+def test(scenes: Union[PathLike, Iterable[Scene]],
+         controller: Union[Callable[[Scene], Union[str, Mapping[str, Any]]], str, None] = None, *,
+         exec: Optional[str] = None, persistent: bool = False, timeout: float = 60.0,
+         startup_timeout: float = 120.0, threads: int = 1) -> List[Dict[str, Any]]: ...
+
+# Your controller as a `prs test --exec` worker (serve.py; pure Python, works without _core).
+def serve(controller: Callable[[Dict[str, Any]], Union[str, Mapping[str, Any]]], *,
+          ready_extra: Optional[Mapping[str, Any]] = ...) -> None: ...
 
 def positions(scenes: Iterable[Scene], name: str) -> FloatArray: ...  # (n, 3)
 def dimensions(scenes: Iterable[Scene], name: str) -> FloatArray: ...  # (n, 3)

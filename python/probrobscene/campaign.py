@@ -27,6 +27,7 @@ PathLike = Union[str, "os.PathLike[str]"]
 
 def init(dir: PathLike, path: PathLike, n: int, *, seed: int = 0, shard_size: int = 1000,
          controller: Optional[str] = None, exec: Optional[str] = None, timeout: float = 60.0,
+         persistent: bool = False, startup_timeout: float = 120.0,
          params: Optional[Mapping[str, Any]] = None, search_path: Sequence[PathLike] = (),
          max_attempts: int = 10_000, naive: bool = False, search: Optional[str] = None,
          batch: Optional[int] = None, stable: Union[bool, float, None] = None,
@@ -35,6 +36,8 @@ def init(dir: PathLike, path: PathLike, n: int, *, seed: int = 0, shard_size: in
     """Makes the campaign directory ``dir`` (new or empty), as ``prs campaign init``: ``n``
     episodes of ``controller`` (a built-in name) or ``exec`` (a shell command, docs/harness.md)
     in the scenario file ``path``, or ``n`` scenes without either, in shards of ``shard_size``.
+    ``persistent=True`` starts ``exec`` once per worker thread of a shard rather than once per
+    episode (``--persistent``, with ``startup_timeout`` seconds for its handshake).
     With ``search`` ("ce", "anneal" or "random") the episodes are a failure search of budget
     ``n`` in generations of ``batch`` (default as ``prs search``), run generation after
     generation (docs/search.md). ``stable`` and ``settle`` as for :func:`probrobscene.load`
@@ -51,7 +54,8 @@ def init(dir: PathLike, path: PathLike, n: int, *, seed: int = 0, shard_size: in
     if batch is not None and (search is None or batch < 1):
         raise ValueError("batch is a search's generation size (>= 1): give search= too")
     return _core.campaign_init(os.fspath(dir), os.fspath(path), options, n, shard_size, seed,
-                               controller or "", exec or "", float(timeout), search or "",
+                               controller or "", exec or "", float(timeout), bool(persistent),
+                               float(startup_timeout), search or "",
                                batch or 0)
 
 

@@ -12,6 +12,7 @@
 #include <utility>
 #include <vector>
 
+#include "harness/harness.h"
 #include "lang/lang.h"
 #include "sampling/sampler.h"
 
@@ -93,6 +94,12 @@ py::list RunPythonSearch(const ProgramPtr& program, const sampling::SampleOption
                          const py::function& controller, int64_t budget,
                          const std::string& strategy, uint64_t seed,
                          std::optional<int64_t> batch);
+/// search.cc: what a Python controller returned, as an episode result: an outcome name, or a
+/// dict with "outcome" and optionally "detail", "score" and anything else (the extra);
+/// "bad-answer" for anything else. Needs the GIL.
+harness::EpisodeResult ConvertControllerAnswer(const py::object& answer);
+/// replay.cc: read_scene_lines (scenes files as Scenes) and test_scenes (a controller on them).
+void BindReplay(py::module_& m);
 /// search.cc: report_markdown(lines, title).
 void BindSearch(py::module_& m);
 /// campaign.cc: campaign_init, campaign_run_shard, campaign_status, campaign_merge.

@@ -28,10 +28,9 @@ auto CallCampaign(Body body) -> decltype(body()) {
 }
 
 harness::ControllerFactory ChooseFactory(const campaign::CampaignSpec& spec) {
-  if (auto factory =
-          controllers::MakeControllerFactory(spec.controller, spec.exec, spec.timeout_s, nullptr)) {
-    return *factory;
-  }
+  const controllers::ControllerChoice choice{spec.controller, spec.exec, spec.timeout_s,
+                                              spec.persistent, spec.startup_timeout_s};
+  if (auto factory = controllers::MakeControllerFactory(choice, nullptr)) return *factory;
   throw py::value_error("unknown controller '" + spec.controller +
                         "' (controllers: " + controllers::ListControllerNames() + ")");
 }
@@ -39,7 +38,8 @@ harness::ControllerFactory ChooseFactory(const campaign::CampaignSpec& spec) {
 std::string Init(const std::string& dir, const std::string& path, const LoadOptions& load,
                  uint64_t count, uint64_t shard_size, const py::object& seed_arg,
                  const std::string& controller, const std::string& exec, double timeout_s,
-                 const std::string& strategy, uint64_t batch) {
+                 bool persistent, double startup_timeout_s, const std::string& strategy,
+                 uint64_t batch) {
   campaign::CampaignSpec spec;
   spec.kind = controller.empty() && exec.empty() ? "sample" : "test";
   if (!strategy.empty()) {
@@ -51,6 +51,12 @@ std::string Init(const std::string& dir, const std::string& path, const LoadOpti
   spec.controller = controller;
   spec.exec = exec;
   spec.timeout_s = timeout_s;
+  spec.persistent = persistent;
+  spec.startup_timeout_s = startup_timeout_s;
+  if (persistent && exec.empty()) throw py::value_error("persistent=True needs exec");
+  if (!(timeout_s > 0) || !(startup_timeout_s > 0)) {
+    throw py::value_error("timeout and startup_timeout must be above 0 seconds");
+  }
   if (!controller.empty() && !exec.empty()) {
     throw py::value_error("give a controller or exec, not both");
   }
@@ -195,7 +201,8 @@ py::dict Merge(const std::string& dir, const std::string& output, bool partial) 
 void BindCampaign(py::module_& m) {
   m.def("campaign_init", &Init, py::arg("dir"), py::arg("path"), py::arg("options"),
         py::arg("count"), py::arg("shard_size"), py::arg("seed"), py::arg("controller"),
-        py::arg("exec"), py::arg("timeout_s"), py::arg("strategy"), py::arg("batch"));
+        py::arg("exec"), py::arg("timeout_s"), py::arg("persistent"),
+        py::arg("startup_timeout_s"), py::arg("strategy"), py::arg("batch"));
   m.def("campaign_plan", &Plan, py::arg("dir"));
   m.def("campaign_run_shard", &RunShard, py::arg("dir"), py::arg("shard"), py::arg("threads"));
   m.def("campaign_status", &Status, py::arg("dir"));

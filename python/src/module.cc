@@ -8,4 +8,5 @@ PYBIND11_MODULE(_core, m) {
   prs::python::BindScenario(m);
   prs::python::BindSearch(m);
   prs::python::BindCampaign(m);
+  prs::python::BindReplay(m);
 }

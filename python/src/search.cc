@@ -34,44 +34,7 @@ class PythonController : public harness::Controller {
       if (error.matches(PyExc_KeyboardInterrupt)) cancel_->store(true);
       throw;
     }
-    harness::EpisodeResult result;
-    if (py::isinstance<py::str>(answer)) {
-      result.outcome = answer.cast<std::string>();
-      result.detail = "the controller returned " + result.outcome;
-      return result;
-    }
-    if (!py::isinstance<py::dict>(answer)) {
-      return {"bad-answer",
-              "the controller must return an outcome name or a dict with "
-              "\"outcome\", not " +
-                  std::string(py::str(answer.get_type().attr("__name__")))};
-    }
-    py::dict dict = answer.cast<py::dict>();
-    if (!dict.contains("outcome") || !py::isinstance<py::str>(dict["outcome"])) {
-      return {"bad-answer", "the controller's dict has no \"outcome\" string"};
-    }
-    result.outcome = dict["outcome"].cast<std::string>();
-    result.detail = dict.contains("detail") ? std::string(py::str(dict["detail"]))
-                                            : "the controller returned " + result.outcome;
-    if (dict.contains("score")) {
-      const py::object score = dict["score"];
-      const bool number = py::isinstance<py::float_>(score) || py::isinstance<py::int_>(score);
-      if (!number || !std::isfinite(score.cast<double>())) {
-        return {"bad-answer",
-                "the controller's \"score\" must be a finite number (larger is "
-                "safer, 0 or less a failure)"};
-      }
-      result.score = score.cast<double>();
-    }
-    const py::object dumps = py::module_::import("json").attr("dumps");
-    for (const auto& [key, value] : dict) {
-      const std::string name = py::str(key);
-      if (name == "outcome" || name == "detail" || name == "score") continue;
-      result.extra[name] = nlohmann::json::parse(
-          dumps(value, py::arg("default") = py::module_::import("builtins").attr("str"))
-              .cast<std::string>());
-    }
-    return result;
+    return ConvertControllerAnswer(answer);
   }
 
  private:
@@ -81,6 +44,47 @@ class PythonController : public harness::Controller {
 };
 
 }  // namespace
+
+harness::EpisodeResult ConvertControllerAnswer(const py::object& answer) {
+  harness::EpisodeResult result;
+  if (py::isinstance<py::str>(answer)) {
+    result.outcome = answer.cast<std::string>();
+    result.detail = "the controller returned " + result.outcome;
+    return result;
+  }
+  if (!py::isinstance<py::dict>(answer)) {
+    return {"bad-answer",
+            "the controller must return an outcome name or a dict with "
+            "\"outcome\", not " +
+                std::string(py::str(answer.get_type().attr("__name__")))};
+  }
+  py::dict dict = answer.cast<py::dict>();
+  if (!dict.contains("outcome") || !py::isinstance<py::str>(dict["outcome"])) {
+    return {"bad-answer", "the controller's dict has no \"outcome\" string"};
+  }
+  result.outcome = dict["outcome"].cast<std::string>();
+  result.detail = dict.contains("detail") ? std::string(py::str(dict["detail"]))
+                                          : "the controller returned " + result.outcome;
+  if (dict.contains("score")) {
+    const py::object score = dict["score"];
+    const bool number = py::isinstance<py::float_>(score) || py::isinstance<py::int_>(score);
+    if (!number || !std::isfinite(score.cast<double>())) {
+      return {"bad-answer",
+              "the controller's \"score\" must be a finite number (larger is "
+              "safer, 0 or less a failure)"};
+    }
+    result.score = score.cast<double>();
+  }
+  const py::object dumps = py::module_::import("json").attr("dumps");
+  for (const auto& [key, value] : dict) {
+    const std::string name = py::str(key);
+    if (name == "outcome" || name == "detail" || name == "score") continue;
+    result.extra[name] = nlohmann::json::parse(
+        dumps(value, py::arg("default") = py::module_::import("builtins").attr("str"))
+            .cast<std::string>());
+  }
+  return result;
+}
 
 py::list ListCoordinates(const lang::CompiledProgram& program,
                          const sampling::SampleOptions& options) {

@@ -42,6 +42,8 @@ nlohmann::json ToJson(const CampaignSpec& s) {
           {"controller", s.controller},
           {"exec", s.exec},
           {"timeout_s", s.timeout_s},
+          {"persistent", s.persistent},
+          {"startup_timeout_s", s.startup_timeout_s},
           {"spec_hash", s.spec_hash},
           {"version", s.version},
           {"strategy", s.strategy},
@@ -213,6 +215,8 @@ CampaignSpec ReadCampaign(const std::string& dir) {
     s.controller = j.at("controller");
     s.exec = j.at("exec");
     s.timeout_s = j.at("timeout_s");
+    s.persistent = j.value("persistent", false);
+    s.startup_timeout_s = j.value("startup_timeout_s", 120.0);
     s.spec_hash = j.at("spec_hash");
     s.version = j.at("version");
     s.strategy = j.value("strategy", "");

@@ -93,6 +93,8 @@ int RunInit(const CampaignArgs& args) {
   spec.controller = args.controller.controller;
   spec.exec = args.controller.exec;
   spec.timeout_s = args.controller.timeout_s;
+  spec.persistent = args.controller.persistent;
+  spec.startup_timeout_s = args.controller.startup_timeout_s;
   spec.version = PRS_VERSION;
   try {
     spec = campaign::InitCampaign(args.dir, *program, spec);
@@ -126,7 +128,9 @@ int RunShardCommand(const CampaignArgs& args) {
     program = campaign::CompileCampaign(args.dir, spec);
     std::optional<harness::ControllerFactory> factory;
     if (spec.kind != "sample") {
-      factory = ChooseController({spec.controller, spec.exec, spec.timeout_s}, interrupt.flag());
+      factory = ChooseController({spec.controller, spec.exec, spec.timeout_s, spec.persistent,
+                                         spec.startup_timeout_s},
+                                        interrupt.flag());
       if (!factory) return kExitUsage;
     }
     campaign::RunShard(args.dir, spec, *program, static_cast<uint64_t>(args.shard),

@@ -17,12 +17,24 @@ void AddControllerOptions(CLI::App& command, ControllerArgs& args) {
                                 .add_option("--controller", args.controller,
                                             "a built-in controller (" + ListControllerNames() + ")")
                                 ->type_name("NAME");
-  command
-      .add_option("--exec", args.exec,
-                  "your own controller: a shell command run once per scene (docs/harness.md)")
-      ->type_name("CMD")
-      ->excludes(controller);
+  CLI::Option* exec =
+      command
+          .add_option("--exec", args.exec,
+                      "your own controller: a shell command run once per scene (docs/harness.md)")
+          ->type_name("CMD")
+          ->excludes(controller);
   command.add_option("--timeout", args.timeout_s, "seconds an --exec episode may take")
+      ->type_name("S")
+      ->check(PositiveNumber("seconds"))
+      ->capture_default_str();
+  command
+      .add_flag("--persistent", args.persistent,
+                "start the --exec command once per worker thread and send it one scene per line "
+                "(a controller in a simulator that takes seconds to start; docs/harness.md)")
+      ->needs(exec);
+  command
+      .add_option("--startup-timeout", args.startup_timeout_s,
+                  "seconds a --persistent worker may take to send its handshake")
       ->type_name("S")
       ->check(PositiveNumber("seconds"))
       ->capture_default_str();
@@ -37,10 +49,9 @@ std::optional<harness::ControllerFactory> ChooseController(const ControllerArgs&
                ") or --exec CMD");
     return std::nullopt;
   }
-  if (auto factory =
-          controllers::MakeControllerFactory(args.controller, args.exec, args.timeout_s, &cancel)) {
-    return factory;
-  }
+  const controllers::ControllerChoice choice{args.controller, args.exec, args.timeout_s,
+                                              args.persistent, args.startup_timeout_s};
+  if (auto factory = controllers::MakeControllerFactory(choice, &cancel)) return factory;
   std::vector<std::string> names;
   for (const harness::ControllerInfo& info : harness::ListControllers()) names.push_back(info.name);
   const std::string suggestion = lang::SuggestClosest(args.controller, names);

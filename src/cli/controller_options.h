@@ -15,14 +15,17 @@
 
 namespace prs::cli {
 
-/// --controller NAME / --exec CMD / --timeout S.
+/// --controller NAME / --exec CMD / --timeout S / --persistent / --startup-timeout S.
 struct ControllerArgs {
   std::string controller;
   std::string exec;
   double timeout_s = 60;
+  bool persistent = false;
+  double startup_timeout_s = 120;
 };
 
-/// Adds --controller, --exec (excluding each other) and --timeout to `command`.
+/// Adds --controller, --exec (excluding each other), --timeout, --persistent and
+/// --startup-timeout (both needing --exec) to `command`.
 void AddControllerOptions(CLI::App& command, ControllerArgs& args);
 
 /// The built-in controllers' names, comma-separated.

@@ -1,9 +1,12 @@
 // `prs test`: runs a robot controller (a built-in one, or the user's own program with --exec)
-// in sampled scenes, prints the outcome table (the paper's Table III) on stdout, one JSON
-// record per episode to -o, and saves the failing scenes with --save-failures (docs/harness.md).
+// in sampled scenes, or in saved ones (a scenes file or directory, or --replay RECORDS), prints
+// the outcome table (the paper's Table III) on stdout, one JSON record per episode to -o, and
+// saves the failing scenes with --save-failures (docs/harness.md).
 #include <fmt/format.h>
 
 #include <algorithm>
+#include <filesystem>
+#include <functional>
 #include <iostream>
 #include <memory>
 #include <optional>
@@ -16,6 +19,7 @@
 #include "cli/failure_pictures.h"
 #include "cli/interrupt.h"
 #include "cli/progress.h"
+#include "cli/test_replay.h"
 #include "harness/harness.h"
 #include "output/line_writer.h"
 
@@ -30,8 +34,14 @@ struct TestArgs {
   SceneRangeArgs range{.count = 100, .start = 0};
   std::string output;  // empty: no records written
   std::string save_failures_dir;
+  std::string replay;         // --replay RECORDS.jsonl: the scenes of an earlier run
+  bool failed_only = false;   // --failed: only its failures
   bool quiet = false;
+  const CLI::Option* count_option = nullptr;  // given: -n selects among saved scenes too
 };
+
+// Runs the episodes with `options` (sampled, or replayed) and returns their summary.
+using EpisodeRun = std::function<harness::RunSummary(harness::RunOptions& options)>;
 
 harness::RunOptions MakeRunOptions(const TestArgs& args, const std::atomic<bool>& cancel) {
   harness::RunOptions options;
@@ -75,12 +85,12 @@ bool IsEveryOutcome(const std::vector<harness::EpisodeRecord>& records, const st
   });
 }
 
-// Runs the episodes, writing each record as it arrives; returns the exit code.
-int RunAndReport(const lang::CompiledProgram& program, const harness::ControllerFactory& factory,
-                 const TestArgs& args, output::LineWriter* records, InterruptWatch& interrupt) {
-  harness::RunOptions options = MakeRunOptions(args, interrupt.flag());
-  std::unique_ptr<search::Design> design;
-  ProgressBar progress(args.range.count, !args.quiet && IsStderrTerminal());
+// Runs `count` episodes with `run`, writing each record as it arrives; returns the exit code.
+// `program` (null for scenes that only files hold) locates run-time errors.
+int RunAndReport(const lang::CompiledProgram* program, int64_t count, const EpisodeRun& run,
+                 harness::RunOptions options, const TestArgs& args, output::LineWriter* records,
+                 InterruptWatch& interrupt) {
+  ProgressBar progress(count, !args.quiet && IsStderrTerminal());
   int64_t done = 0;
   options.on_record = [&](const harness::EpisodeRecord& record) {
     if (records) records->AddLine(harness::FormatRecordJson(record));
@@ -89,9 +99,7 @@ int RunAndReport(const lang::CompiledProgram& program, const harness::Controller
   options.on_warning = WarnOnce([&] { progress.Erase(); });
   const auto begin = std::chrono::steady_clock::now();
   try {
-    if (!PrepareDesign(args.design, program, args.range, options.sample, &design)) return kExitUsage;
-    options.spec_hash = search::CalcSpecHash(program);
-    const harness::RunSummary summary = harness::RunEpisodes(program, factory, options);
+    const harness::RunSummary summary = run(options);
     if (records) records->Commit();
     progress.Erase();
     const double seconds =
@@ -106,12 +114,18 @@ int RunAndReport(const lang::CompiledProgram& program, const harness::Controller
                : ReportSavedFailures(summary.records, args.save_failures_dir, args.quiet);
   } catch (const lang::ScenarioError& error) {
     progress.Erase();
-    return ReportScenarioError(error, program.sources);
+    if (!program) throw;
+    return ReportScenarioError(error, program->sources);
+  } catch (const harness::ControllerStartError& error) {
+    progress.Erase();
+    PrintError(error.what());
+    if (records) PrintNote("the records so far are in " + records->partial_path());
+    return kExitScenarioError;
   } catch (const sampling::BatchCancelled&) {
     progress.Erase();
     PrintNote(fmt::format("interrupted after {} (resume with --start {} -n {})",
                           FormatCount(done, "episode"), args.range.start + uint64_t(done),
-                          args.range.count - done));
+                          count - done));
     return kExitInterruptedBase + interrupt.signal_number();
   } catch (const std::exception& error) {  // records or failing scenes cannot be written
     progress.Erase();
@@ -120,17 +134,92 @@ int RunAndReport(const lang::CompiledProgram& program, const harness::Controller
   }
 }
 
+// Items [--start, --start + -n) of `total` saved scenes, all from --start without -n.
+std::pair<int64_t, int64_t> SelectSaved(const TestArgs& args, int64_t total) {
+  const int64_t first = int64_t(std::min<uint64_t>(args.range.start, uint64_t(total)));
+  const bool counted = args.count_option && args.count_option->count() > 0;
+  return {first, counted ? std::min(args.range.count, total - first) : total - first};
+}
+
+// `prs test SCENES.jsonl` / `prs test DIR`: the saved scenes as they are.
+int RunSavedScenes(const TestArgs& args, const harness::ControllerFactory& factory,
+                   InterruptWatch& interrupt) {
+  if (!args.replay.empty() || args.design.name != DesignArgs{}.name || !args.sampling.settle_s.empty() ||
+      !args.sampling.stable_s.empty() || args.sampling.naive) {
+    PrintError(args.scenario.file + " holds scenes, which run as they are: --replay, --design, "
+               "--naive, --stable and --settle need the .prs program");
+    return kExitUsage;
+  }
+  const auto lines = ReadSavedScenes(args.scenario.file);
+  if (!lines) return kExitScenarioError;
+  const auto [first, count] = SelectSaved(args, int64_t(lines->size()));
+  const std::vector<SavedSceneLine> chosen(lines->begin() + first, lines->begin() + first + count);
+  std::unique_ptr<output::LineWriter> records;
+  if (!OpenEpisodeOutputs(args.output, args.save_failures_dir, &records)) return kExitScenarioError;
+  harness::RunOptions options = MakeRunOptions(args, interrupt.flag());
+  options.scenario_args.clear();  // no program: no command rewrites these scenes
+  const harness::ReplaySourceFactory sources = MakeSavedSceneSources(chosen);
+  return RunAndReport(
+      nullptr, count,
+      [&](harness::RunOptions& run) {
+        return harness::ReplayEpisodes(count, sources, factory, run);
+      },
+      options, args, records.get(), interrupt);
+}
+
+// `prs test FILE.prs --replay RECORDS.jsonl`: the records' scenes, regenerated and checked.
+int RunReplayedRecords(const lang::CompiledProgram& program, const TestArgs& args,
+                       const harness::ControllerFactory& factory, output::LineWriter* records,
+                       InterruptWatch& interrupt) {
+  if (args.design.name != DesignArgs{}.name) {
+    PrintError("--replay: the records carry their scenes' coordinates; leave out --design");
+    return kExitUsage;
+  }
+  const auto replayed = ReadRecordsToReplay(args.replay, program, args.failed_only);
+  if (!replayed) return kExitScenarioError;
+  const auto [first, count] = SelectSaved(args, int64_t(replayed->size()));
+  const std::vector<search::ReportRecord> chosen(replayed->begin() + first,
+                                                  replayed->begin() + first + count);
+  harness::RunOptions options = MakeRunOptions(args, interrupt.flag());
+  options.spec_hash = search::CalcSpecHash(program);
+  // A scene drawn at coordinates is not scene (seed, index) of the stream.
+  const bool at_coordinates = std::any_of(chosen.begin(), chosen.end(),
+                                          [](const auto& r) { return !r.coordinates.empty(); });
+  if (at_coordinates) options.scenario_args.clear();
+  const harness::ReplaySourceFactory sources =
+      MakeRegeneratedSources(program, options.sample, chosen, args.replay);
+  return RunAndReport(
+      &program, count,
+      [&](harness::RunOptions& run) {
+        return harness::ReplayEpisodes(count, sources, factory, run);
+      },
+      options, args, records, interrupt);
+}
+
 // Checks that need no scenario, then compiles it, opens the outputs and runs.
 int RunTest(const TestArgs& args) {
   if (!CheckSceneRange(args.range)) return kExitUsage;
   InterruptWatch interrupt;
   const auto factory = ChooseController(args.controller, interrupt.flag());
   if (!factory) return kExitUsage;
+  if (IsScenesFile(args.scenario.file) || std::filesystem::is_directory(args.scenario.file)) {
+    return RunSavedScenes(args, *factory, interrupt);
+  }
   auto program = CompileScenario(args.scenario);
   if (!program) return kExitScenarioError;
   std::unique_ptr<output::LineWriter> records;
   if (!OpenEpisodeOutputs(args.output, args.save_failures_dir, &records)) return kExitScenarioError;
-  return RunAndReport(*program, *factory, args, records.get(), interrupt);
+  if (!args.replay.empty()) {
+    return RunReplayedRecords(*program, args, *factory, records.get(), interrupt);
+  }
+  harness::RunOptions options = MakeRunOptions(args, interrupt.flag());
+  std::unique_ptr<search::Design> design;
+  if (!PrepareDesign(args.design, *program, args.range, options.sample, &design)) return kExitUsage;
+  options.spec_hash = search::CalcSpecHash(*program);
+  return RunAndReport(
+      program.get(), args.range.count,
+      [&](harness::RunOptions& run) { return harness::RunEpisodes(*program, *factory, run); },
+      options, args, records.get(), interrupt);
 }
 
 }  // namespace
@@ -148,9 +237,20 @@ CommandRunner ConfigureTestCommand(CLI::App& command) {
                   "write each failing scene to DIR/seed-S-index-I.json")
       ->type_name("DIR")
       ->check(NonEmptyPath());
+  command
+      .add_option("--replay", args->replay,
+                  "run the scenes of an earlier run's records again (prs test -o, prs search -o), "
+                  "regenerated from FILE and checked against what they recorded")
+      ->type_name("RECORDS")
+      ->check(NonEmptyPath());
+  command.add_flag("--failed", args->failed_only, "with --replay: only the records that failed");
   AddSamplingOptions(command, args->sampling);
   AddDesignOption(command, args->design);
   command.add_flag("-q,--quiet", args->quiet, "no summary on stderr");
+  args->count_option = command.get_option("-n");
+  command.get_option("FILE")->description(
+      "the .prs scenario; or saved scenes to run as they are: a scenes file (.jsonl, from prs "
+      "sample or --save-failures) or a directory of them");
   return [args] { return RunTest(*args); };
 }
 

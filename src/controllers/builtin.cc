@@ -7,6 +7,7 @@
 
 #include "export/export.h"
 #include "harness/exec_controller.h"
+#include "harness/persistent_controller.h"
 #include "harness/registry.h"
 #include "sim/table_cube_controller.h"
 
@@ -38,10 +39,10 @@ class TableCubeEpisodes : public harness::Controller {
 // controller can then move nothing.
 class ExecWithSceneCheck : public harness::Controller {
  public:
-  explicit ExecWithSceneCheck(const harness::ExecOptions& options) : exec_(options) {}
+  explicit ExecWithSceneCheck(std::unique_ptr<harness::Controller> exec) : exec_(std::move(exec)) {}
   harness::EpisodeResult RunEpisode(const sampling::SampledScene& scene,
                                     const std::string& scene_json) override {
-    harness::EpisodeResult result = exec_.RunEpisode(scene, scene_json);
+    harness::EpisodeResult result = exec_->RunEpisode(scene, scene_json);
     if (!HasFreeBody(scene.scene)) result.warnings.push_back(kNoFreeBodyWarning);
     return result;
   }
@@ -52,7 +53,7 @@ class ExecWithSceneCheck : public harness::Controller {
     return std::any_of(exported.bodies.begin(), exported.bodies.end(),
                        [](const exporting::Body& b) { return b.is_free(); });
   }
-  harness::ExecController exec_;
+  std::unique_ptr<harness::Controller> exec_;
 };
 
 }  // namespace
@@ -95,16 +96,23 @@ std::string ListControllerNames() {
   return names;
 }
 
-std::optional<harness::ControllerFactory> MakeControllerFactory(const std::string& name,
-                                                                const std::string& exec,
-                                                                double timeout_s,
+std::optional<harness::ControllerFactory> MakeControllerFactory(const ControllerChoice& choice,
                                                                 const std::atomic<bool>* cancel) {
-  if (!exec.empty()) {
-    const harness::ExecOptions options{exec, timeout_s, cancel};
-    return [options] { return std::make_unique<ExecWithSceneCheck>(options); };
+  if (!choice.exec.empty() && choice.persistent) {
+    harness::ControllerFactory workers = harness::MakePersistentControllerFactory(
+        {choice.exec, choice.timeout_s, choice.startup_timeout_s, cancel});
+    return [workers] { return std::make_unique<ExecWithSceneCheck>(workers()); };
+  }
+  if (!choice.exec.empty()) {
+    const harness::ExecOptions options{choice.exec, choice.timeout_s, cancel};
+    return [options] {
+      return std::make_unique<ExecWithSceneCheck>(std::make_unique<harness::ExecController>(options));
+    };
   }
   RegisterBuiltInControllers();
-  if (const harness::ControllerInfo* info = harness::FindController(name)) return info->factory;
+  if (const harness::ControllerInfo* info = harness::FindController(choice.name)) {
+    return info->factory;
+  }
   return std::nullopt;
 }
 

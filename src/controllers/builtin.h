@@ -22,13 +22,21 @@ extern const char* const kNoFreeBodyWarning;
 /// Every registered controller's name, comma-separated, after RegisterBuiltInControllers().
 std::string ListControllerNames();
 
-/// The factory of the shell command `exec` (harness::ExecController with `timeout_s` and
-/// `cancel`, warning with kNoFreeBodyWarning on scenes without a free body) when it is not
-/// empty, else of the registered controller `name`; nullopt when no
-/// controller has that name. Registers the built-in controllers first.
-std::optional<harness::ControllerFactory> MakeControllerFactory(const std::string& name,
-                                                                const std::string& exec,
-                                                                double timeout_s,
+/// The controller a user chose: a registered one by name, or a shell command (--exec).
+struct ControllerChoice {
+  std::string name;
+  std::string exec;
+  double timeout_s = 60;           // --timeout: seconds an --exec episode may take
+  bool persistent = false;         // --persistent: one --exec process per worker thread
+  double startup_timeout_s = 120;  // --startup-timeout: seconds a persistent worker may take to start
+};
+
+/// The factory of the shell command `choice.exec` when it is not empty (harness::ExecController,
+/// or with `persistent` harness::MakePersistentControllerFactory's, with the timeouts and
+/// `cancel`, warning with kNoFreeBodyWarning on scenes without a free body), else of the
+/// registered controller `choice.name`; nullopt when no controller has that name. Registers
+/// the built-in controllers first.
+std::optional<harness::ControllerFactory> MakeControllerFactory(const ControllerChoice& choice,
                                                                 const std::atomic<bool>* cancel);
 
 }  // namespace prs::controllers

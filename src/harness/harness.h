@@ -9,6 +9,7 @@
 #include <memory>
 #include <nlohmann/json.hpp>
 #include <optional>
+#include <stdexcept>
 #include <string>
 #include <vector>
 
@@ -43,6 +44,14 @@ class Controller {
   /// recorded as the outcome "controller-error" with their message as the detail.
   virtual EpisodeResult RunEpisode(const sampling::SampledScene& scene,
                                    const std::string& scene_json) = 0;
+};
+
+/// Thrown by a controller that cannot start at all (a persistent worker that exits or sends no
+/// handshake): unlike other exceptions it is not an episode's "controller-error" but stops the
+/// run, as the same would happen in every later episode.
+class ControllerStartError : public std::runtime_error {
+ public:
+  using std::runtime_error::runtime_error;
 };
 
 /// Makes one controller (one per worker thread).
@@ -117,6 +126,28 @@ struct RunSummary {
 /// file when a failure's scene cannot be saved.
 RunSummary RunEpisodes(const lang::CompiledProgram& program, const ControllerFactory& factory,
                        const RunOptions& options);
+
+/// One scene of a replay as a worker thread makes it: a scene read back from a file with the
+/// line the controller is to get, or one regenerated from its program (scene_json empty: the
+/// controller gets output::FormatSceneJson(sampled)).
+struct ReplayScene {
+  sampling::SampledScene sampled;
+  std::string scene_json;
+};
+/// Makes the scene of replay item `item` (0 for the first). One per worker thread, so that it
+/// may keep per-thread state (a sampling::SceneSampler); exceptions stop the replay.
+using ReplaySource = std::function<ReplayScene(int64_t item)>;
+using ReplaySourceFactory = std::function<ReplaySource()>;
+
+/// Runs the controller in the scenes of items 0..count-1 (`prs test SCENES.jsonl`, `--replay`)
+/// on options.threads worker threads and returns the records in item order, each with its
+/// scene's own seed and index. Of `options` it uses threads, scenario_args (the regenerate
+/// command of failures; empty for scenes that only a file holds), save_failures_dir,
+/// on_failure, on_record, on_warning, cancel and spec_hash. Throws what the sources throw and
+/// ControllerStartError for the lowest item that failed, after on_record has seen every record
+/// before it; sampling::BatchCancelled once cancelled.
+RunSummary ReplayEpisodes(int64_t count, const ReplaySourceFactory& sources,
+                          const ControllerFactory& factory, const RunOptions& options);
 
 /// One row of the outcome table.
 struct OutcomeRow {
