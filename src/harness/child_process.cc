@@ -217,7 +217,7 @@ std::optional<EpisodeResult> ParseJsonAnswer(const std::string& line) {
   }
   if (too_deep) {
     return EpisodeResult{"bad-answer",
-                         fmt::format("the controller's last line nests JSON more than {} levels "
+                         fmt::format("the controller's answer nests JSON more than {} levels "
                                      "deep",
                                      kMaxAnswerDepth),
                          {{"answer", Shorten(line)}}};
@@ -226,7 +226,7 @@ std::optional<EpisodeResult> ParseJsonAnswer(const std::string& line) {
   if (outcome == answer.end() || !outcome->is_string() ||
       !IsOutcomeName(outcome->get<std::string>())) {
     return EpisodeResult{"bad-answer",
-                         "the controller's last line is a JSON object without a valid "
+                         "the controller's answer is a JSON object without a valid "
                          "\"outcome\" (a lowercase-hyphenated string such as \"no-path\")",
                          {{"answer", Shorten(line)}}};
   }

@@ -6,6 +6,7 @@
 #include <nlohmann/json.hpp>
 
 #include <filesystem>
+#include <fstream>
 
 #include "cli/test/json_lines.h"
 #include "cli/test/prs_test_fixture.h"
@@ -115,6 +116,7 @@ TEST_F(PrsTest, ABadSceneLineIsLocatedAndNothingRuns) {
 
 // A controller in POSIX sh for both modes: odd scenes fail with their index as the score.
 constexpr char kShellController[] = R"(#!/bin/sh
+[ -n "$LOG" ] && echo "start $$" >> "$LOG"
 [ "$PRS_PERSISTENT" = 1 ] && echo '{"ready": true}'
 while IFS= read -r line; do
   rest=${line#*\"seed\":}; seed=${rest%%[!0-9]*}
@@ -139,6 +141,42 @@ TEST_F(PrsTest, PersistentWorkersGiveTheRecordsOfOneProcessPerEpisode) {
   }
   EXPECT_EQ(runs[1], runs[0]);
   EXPECT_EQ(runs[2], runs[0]);
+}
+
+TEST_F(PrsTest, PersistentWorkersServeEveryGenerationOfASearchAndACampaignShard) {
+  const std::string log = (dir_ / "starts.txt").string();
+  const std::string command =
+      "LOG='" + log + "' exec sh '" + Write("controller.sh", kShellController) + "'";
+  Result r = Run({"search", Example("table_cube.prs"), "--exec", command, "--persistent",
+                  "--budget", "60", "--batch", "20", "--threads", "2", "-o",
+                  (dir_ / "search.jsonl").string()});
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  EXPECT_EQ(ReadRecords(dir_ / "search.jsonl").size(), 60u);
+  std::vector<json> starts;
+  const auto count_starts = [&] {
+    std::ifstream in(log);
+    int n = 0;
+    for (std::string line; std::getline(in, line);) n += line.starts_with("start ");
+    return n;
+  };
+  EXPECT_EQ(count_starts(), 2) << "two workers for three generations";
+
+  const std::string dir = (dir_ / "campaign").string();
+  r = Run({"campaign", "init", dir, Example("table_cube.prs"), "--exec", command, "--persistent",
+           "-n", "12", "--shard-size", "6", "-s", "7"});
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  for (const char* k : {"1", "0"}) {
+    r = Run({"campaign", "run-shard", dir, k, "--threads", "2"});
+    ASSERT_EQ(r.exit_code, 0) << r.err;
+  }
+  EXPECT_EQ(count_starts(), 2 + 4) << "two workers per shard";
+  r = Run({"campaign", "merge", dir, "-o", (dir_ / "merged.jsonl").string()});
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  r = Run({"test", Example("table_cube.prs"), "--exec", command, "-n", "12", "-s", "7", "-o",
+           (dir_ / "single.jsonl").string()});
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  EXPECT_EQ(Comparable(ReadRecords(dir_ / "merged.jsonl")),
+            Comparable(ReadRecords(dir_ / "single.jsonl")));
 }
 
 TEST_F(PrsTest, APersistentWorkerThatCannotStartStopsTheRun) {
