@@ -134,25 +134,36 @@ int RunAndReport(const lang::CompiledProgram* program, int64_t count, const Epis
   }
 }
 
-// Items [--start, --start + -n) of `total` saved scenes, all from --start without -n.
-std::pair<int64_t, int64_t> SelectSaved(const TestArgs& args, int64_t total) {
-  const int64_t first = int64_t(std::min<uint64_t>(args.range.start, uint64_t(total)));
+// Items [--start, --start + -n) of `total` saved scenes, all from --start without -n; nullopt
+// after a usage error when --start is past the last one.
+std::optional<std::pair<int64_t, int64_t>> SelectSaved(const TestArgs& args, int64_t total,
+                                                       const std::string& what) {
+  if (args.range.start >= uint64_t(total)) {
+    PrintError(fmt::format("--start {}: {} holds {}, numbered from 0", args.range.start, what,
+                           FormatCount(total, "scene")));
+    return std::nullopt;
+  }
+  const int64_t first = int64_t(args.range.start);
   const bool counted = args.count_option && args.count_option->count() > 0;
-  return {first, counted ? std::min(args.range.count, total - first) : total - first};
+  return std::pair{first, counted ? std::min(args.range.count, total - first) : total - first};
 }
 
 // `prs test SCENES.jsonl` / `prs test DIR`: the saved scenes as they are.
 int RunSavedScenes(const TestArgs& args, const harness::ControllerFactory& factory,
                    InterruptWatch& interrupt) {
-  if (!args.replay.empty() || args.design.name != DesignArgs{}.name || !args.sampling.settle_s.empty() ||
-      !args.sampling.stable_s.empty() || args.sampling.naive) {
+  const bool scene_options = !args.replay.empty() || args.design.name != DesignArgs{}.name ||
+                             !args.sampling.settle_s.empty() || !args.sampling.stable_s.empty() ||
+                             args.sampling.naive;
+  if (scene_options) {
     PrintError(args.scenario.file + " holds scenes, which run as they are: --replay, --design, "
                "--naive, --stable and --settle need the .prs program");
     return kExitUsage;
   }
   const auto lines = ReadSavedScenes(args.scenario.file);
   if (!lines) return kExitScenarioError;
-  const auto [first, count] = SelectSaved(args, int64_t(lines->size()));
+  const auto range = SelectSaved(args, int64_t(lines->size()), args.scenario.file);
+  if (!range) return kExitUsage;
+  const auto [first, count] = *range;
   const std::vector<SavedSceneLine> chosen(lines->begin() + first, lines->begin() + first + count);
   std::unique_ptr<output::LineWriter> records;
   if (!OpenEpisodeOutputs(args.output, args.save_failures_dir, &records)) return kExitScenarioError;
@@ -177,7 +188,9 @@ int RunReplayedRecords(const lang::CompiledProgram& program, const TestArgs& arg
   }
   const auto replayed = ReadRecordsToReplay(args.replay, program, args.failed_only);
   if (!replayed) return kExitScenarioError;
-  const auto [first, count] = SelectSaved(args, int64_t(replayed->size()));
+  const auto range = SelectSaved(args, int64_t(replayed->size()), args.replay);
+  if (!range) return kExitUsage;
+  const auto [first, count] = *range;
   const std::vector<search::ReportRecord> chosen(replayed->begin() + first,
                                                   replayed->begin() + first + count);
   harness::RunOptions options = MakeRunOptions(args, interrupt.flag());
@@ -243,7 +256,8 @@ CommandRunner ConfigureTestCommand(CLI::App& command) {
                   "regenerated from FILE and checked against what they recorded")
       ->type_name("RECORDS")
       ->check(NonEmptyPath());
-  command.add_flag("--failed", args->failed_only, "with --replay: only the records that failed");
+  command.add_flag("--failed", args->failed_only, "with --replay: only the records that failed")
+      ->needs("--replay");
   AddSamplingOptions(command, args->sampling);
   AddDesignOption(command, args->design);
   command.add_flag("-q,--quiet", args->quiet, "no summary on stderr");
