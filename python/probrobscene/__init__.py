@@ -36,7 +36,7 @@ __version__ = "0.1.0"
 __all__ = [
     "load", "loads", "Scenario", "Scene", "SceneObject", "ScenarioError", "SamplingError",
     "positions", "dimensions", "quaternions", "yaw_pitch_roll", "search", "report", "campaign",
-    "read_scenes", "test", "serve",
+    "read_scenes", "test", "estimate", "serve",
 ]
 
 PathLike = Union[str, "os.PathLike[str]"]
@@ -174,6 +174,23 @@ def search(scenario: Scenario, controller, budget: int, strategy: str = "ce", se
     return scenario.search(controller, budget, strategy=strategy, seed=seed, batch=batch)
 
 
+def estimate(scenario: Scenario, controller, budget: int, seed: int = 0,
+             threads: int = 1) -> Dict[str, Any]:
+    """How often ``controller`` fails under the scenario's own law, with 95 % intervals, as
+    ``prs estimate`` (docs/search.md): a cross-entropy adaptation toward failures, then
+    importance sampling from a defensive mixture.
+
+    ``controller`` is a function of a Scene as for :func:`search` (it runs on this thread), or
+    a built-in controller's name (run on ``threads`` threads). Returns a dict: ``"episodes"``
+    (weighted), ``"ess"``, ``"reliable"`` (False when the weights degenerate: then do not use
+    the numbers), ``"estimates"`` (per failure outcome: ``"p"``, ``"ci95"``, ``"ess"``,
+    ``"failing_episodes"``, ``"iid_episodes_for_same_precision"``), ``"upper_bound_95"`` when
+    nothing failed, and ``"records"`` (as ``prs estimate -o`` writes them). ValueError for a
+    budget under 200 or an unknown controller name.
+    """
+    return scenario.estimate(controller, budget, seed=seed, threads=threads)
+
+
 def report(records: Union[PathLike, Iterable[Mapping[str, Any]]]) -> str:
     """A failure report in Markdown, as ``prs report`` prints it: what separates failures from
     successes, a depth-2 tree, failure modes with a representative each, error tables.
@@ -246,7 +263,7 @@ if _BUILT:
 else:
     _NEEDS_CORE = set(__all__) - {"serve", "ScenarioError", "SamplingError"} | {"_core"}
     __all__[:] = ["serve", "ScenarioError", "SamplingError"]  # in place: linters read the above
-    del load, loads, search, report, read_scenes, test
+    del load, loads, search, report, read_scenes, test, estimate
 
     def __getattr__(name: str) -> Any:
         """The compiled API, asked for where it is not built: an ImportError that says so."""

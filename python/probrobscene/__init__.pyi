@@ -89,6 +89,8 @@ class Scenario:
     def check(self, n: int = 20, seed: int = 0,
               threads: Optional[int] = None) -> Dict[str, Any]: ...
     def coordinates(self) -> List[Dict[str, Any]]: ...  # name, draw, file, line, column
+    def estimate(self, controller: Union[Callable[[Scene], Union[str, Mapping[str, Any]]], str],
+                 budget: int, seed: int = 0, threads: int = 1) -> Dict[str, Any]: ...
     def search(self, controller: Callable[[Scene], Union[str, Mapping[str, Any]]], budget: int,
                strategy: str = "ce", seed: int = 0,
                batch: Optional[int] = None) -> List[Dict[str, Any]]: ...
@@ -108,6 +110,9 @@ def search(scenario: Scenario, controller: Callable[[Scene], Union[str, Mapping[
            budget: int, strategy: str = "ce", seed: int = 0,
            batch: Optional[int] = None) -> List[Dict[str, Any]]: ...
 def report(records: Union[PathLike, Iterable[Mapping[str, Any]]]) -> str: ...  # Markdown
+def estimate(scenario: Scenario,
+             controller: Union[Callable[[Scene], Union[str, Mapping[str, Any]]], str],
+             budget: int, seed: int = 0, threads: int = 1) -> Dict[str, Any]: ...
 def read_scenes(path: PathLike) -> List[Scene]: ...  # a scenes file, or a directory of them
 def test(scenes: Union[PathLike, Iterable[Scene]],
          controller: Union[Callable[[Scene], Union[str, Mapping[str, Any]]], str, None] = None, *,

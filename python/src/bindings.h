@@ -100,6 +100,11 @@ py::list RunPythonSearch(const ProgramPtr& program, const sampling::SampleOption
 harness::EpisodeResult ConvertControllerAnswer(const py::object& answer);
 /// replay.cc: read_scene_lines (scenes files as Scenes) and test_scenes (a controller on them).
 void BindReplay(py::module_& m);
+/// search.cc: prs estimate with a Python callable (on this thread) or a built-in controller's
+/// name (on `threads` threads, without the GIL): the estimate and the records as a dict.
+py::dict RunPythonEstimate(const ProgramPtr& program, const sampling::SampleOptions& sample,
+                           const py::object& controller, int64_t budget, uint64_t seed,
+                           int threads);
 /// search.cc: report_markdown(lines, title).
 void BindSearch(py::module_& m);
 /// campaign.cc: campaign_init, campaign_run_shard, campaign_status, campaign_merge.

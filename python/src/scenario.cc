@@ -87,6 +87,12 @@ class Scenario {
                            ToSceneNumber(seed_arg, "seed"), batch);
   }
 
+  py::dict Estimate(const py::object& controller, int64_t budget, const py::object& seed_arg,
+                    int threads) {
+    return RunPythonEstimate(program_, options_, controller, budget,
+                             ToSceneNumber(seed_arg, "seed"), threads);
+  }
+
   const std::string& path() const { return path_; }
   int64_t max_attempts() const { return options_.max_attempts; }
   bool naive() const { return options_.run.mode == lang::SamplingMode::kNaive; }
@@ -279,6 +285,14 @@ void BindScenario(py::module_& m) {
            "with 'outcome' and optionally 'detail', 'score' (finite; larger is safer, <= 0 a\n"
            "failure) and anything else (the record's 'extra'). Runs on this thread. Returns\n"
            "the records as dicts, as `prs search -o` writes them.")
+      .def("estimate", &Scenario::Estimate, py::arg("controller"), py::arg("budget"),
+           py::arg("seed") = 0, py::arg("threads") = 1,
+           "How often `controller` fails under the scenario's own law, as `prs estimate`\n"
+           "(docs/search.md): a dict with 'episodes', 'ess', 'reliable', 'estimates' (per\n"
+           "failure outcome: 'p', 'ci95', 'ess', 'failing_episodes',\n"
+           "'iid_episodes_for_same_precision'), 'upper_bound_95' when nothing failed, and\n"
+           "'records'. `controller` is a function (as for search(); runs on this thread) or a\n"
+           "built-in controller's name (run on `threads` threads).")
       .def_property_readonly("path", &Scenario::path, "The file (or loads()' name).")
       .def_property_readonly("max_attempts", &Scenario::max_attempts,
                              "Attempts per scene before sampling fails.")

@@ -9,6 +9,9 @@
 
 #include "bindings.h"
 #include "harness/harness.h"
+#include "controllers/builtin.h"
+#include "search/estimate.h"
+#include "search/like.h"
 #include "search/report.h"
 
 namespace prs::python {
@@ -158,6 +161,77 @@ py::list RunPythonSearch(const ProgramPtr& program, const sampling::SampleOption
     records.append(loads(harness::FormatRecordJson(record)));
   }
   return records;
+}
+
+py::dict RunPythonEstimate(const ProgramPtr& program, const sampling::SampleOptions& sample,
+                           const py::object& controller, int64_t budget, uint64_t seed,
+                           int threads) {
+  if (budget < search::kMinEstimateBudget) {
+    throw py::value_error("budget must be >= " + std::to_string(search::kMinEstimateBudget) +
+                          " (episodes to adapt a proposal and then sample), got " +
+                          std::to_string(budget));
+  }
+  if (threads < 1) throw py::value_error("threads must be >= 1");
+  search::EstimateOptions options;
+  options.budget = budget;
+  options.run.sample = sample;
+  options.run.seed = seed;
+  options.run.spec_hash = search::CalcSpecHash(*program);
+  std::atomic<bool> cancel{false};
+  options.run.cancel = &cancel;
+  search::EstimateSummary summary;
+  try {
+    if (py::isinstance<py::str>(controller)) {
+      const std::string name = controller.cast<std::string>();
+      auto factory = controllers::MakeControllerFactory({name, "", 60, false, 120}, nullptr);
+      if (!factory) {
+        throw py::value_error("unknown controller '" + name +
+                              "' (controllers: " + controllers::ListControllerNames() + ")");
+      }
+      options.run.threads = threads;
+      py::gil_scoped_release no_gil;
+      summary = search::RunEstimate(*program, *factory, options);
+    } else {
+      const py::function function = controller.cast<py::function>();
+      options.run.threads = 1;  // the Python controller runs on this thread, with the GIL
+      summary = search::RunEstimate(
+          *program,
+          [&] { return std::make_unique<PythonController>(program, function, &cancel); },
+          options);
+    }
+  } catch (const sampling::BatchCancelled&) {
+    PyErr_SetNone(PyExc_KeyboardInterrupt);
+    throw py::error_already_set();
+  } catch (const search::NothingToSearch& error) {
+    throw py::value_error(error.what());
+  } catch (const lang::ScenarioError& error) {
+    RaiseScenarioError(error.diagnostic(), program->sources,
+                       lang::RenderDiagnostic(error.diagnostic(), program->sources));
+  }
+  const search::Estimate& e = summary.estimate;
+  py::dict out;
+  out["episodes"] = e.episodes;
+  out["ess"] = e.ess;
+  out["reliable"] = e.reliable;
+  py::dict estimates;
+  for (const search::OutcomeEstimate& o : e.outcomes) {
+    py::dict d;
+    d["p"] = o.p;
+    d["ci95"] = py::make_tuple(o.ci_low, o.ci_high);
+    d["ess"] = e.ess;
+    d["failing_episodes"] = o.episodes;
+    d["iid_episodes_for_same_precision"] = o.iid_episodes;
+    estimates[py::str(o.outcome)] = d;
+  }
+  out["estimates"] = estimates;
+  if (e.outcomes.empty()) out["upper_bound_95"] = e.upper_bound;
+  const py::object loads = py::module_::import("json").attr("loads");
+  py::list records;
+  for (const harness::EpisodeRecord& record : summary.records) {
+    records.append(loads(harness::FormatRecordJson(record)));
+  }
+  out["records"] = records;
+  return out;
 }
 
 void BindSearch(py::module_& m) {

@@ -30,6 +30,7 @@ CommandRunner ConfigureExportCommand(CLI::App& command);
 CommandRunner ConfigureRenderCommand(CLI::App& command);
 CommandRunner ConfigureTestCommand(CLI::App& command);
 CommandRunner ConfigureSearchCommand(CLI::App& command);
+CommandRunner ConfigureEstimateCommand(CLI::App& command);
 CommandRunner ConfigureReportCommand(CLI::App& command);
 CommandRunner ConfigureCompareCommand(CLI::App& command);
 CommandRunner ConfigureCampaignCommand(CLI::App& command);

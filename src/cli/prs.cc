@@ -24,6 +24,8 @@ const std::vector<Command>& CommandTable() {
       {"render", "draw scenes as PNG pictures (offscreen, no display needed)", ConfigureRenderCommand},
       {"test", "run a controller in sampled scenes, tabulate outcomes", ConfigureTestCommand},
       {"search", "search for scenes where a controller fails (ce, anneal)", ConfigureSearchCommand},
+      {"estimate", "how often a controller fails, with a 95 % interval (importance sampling)",
+       ConfigureEstimateCommand},
       {"report", "a failure report from episode records: what separates failures", ConfigureReportCommand},
       {"compare", "two runs of the same scenes, before and after a change: fixed, broken, McNemar",
        ConfigureCompareCommand},

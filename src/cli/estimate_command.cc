@@ -1,0 +1,214 @@
+// `prs estimate`: how often a controller fails under the program's own law, with 95 %
+// intervals (docs/search.md, "How often does it fail"). Adapts a proposal toward failures,
+// samples from it with importance weights, and prints one row per failure outcome; --from
+// makes the estimate again from a record file alone.
+#include <fmt/format.h>
+
+#include <iostream>
+#include <memory>
+#include <nlohmann/json.hpp>
+
+#include "cli/commands.h"
+#include "cli/common.h"
+#include "cli/controller_options.h"
+#include "cli/interrupt.h"
+#include "cli/progress.h"
+#include "cli/text_table.h"
+#include "output/line_writer.h"
+#include "search/estimate.h"
+#include "search/like.h"
+#include "search/search.h"
+
+namespace prs::cli {
+namespace {
+
+struct EstimateArgs {
+  ScenarioArgs scenario;
+  SamplingArgs sampling;
+  ControllerArgs controller;
+  int64_t budget = 0;
+  std::string output;
+  std::string from;  // --from RESULTS.jsonl
+  bool json = false;
+  bool quiet = false;
+};
+
+std::string FormatPercent(double p) { return fmt::format("{:.3g} %", 100 * p); }
+
+std::string FormatEstimateTable(const search::Estimate& e) {
+  TextTable table({"outcome", "p", "95% interval", "failed", "i.i.d. episodes for as tight"},
+                  "lrrrr");
+  for (const search::OutcomeEstimate& o : e.outcomes) {
+    table.AddRow({o.outcome, FormatPercent(o.p),
+                  FormatPercent(o.ci_low) + " - " + FormatPercent(o.ci_high),
+                  std::to_string(o.episodes), fmt::format("{:.0f}", o.iid_episodes)});
+  }
+  return table.Format(0);
+}
+
+// The --json object: {"episodes", "ess", "reliable", "estimates": {...}, "upper_bound_95"}.
+std::string FormatEstimateJson(const search::Estimate& e) {
+  nlohmann::ordered_json out;
+  out["episodes"] = e.episodes;
+  out["ess"] = e.ess;
+  out["reliable"] = e.reliable;
+  out["estimates"] = nlohmann::ordered_json::object();
+  if (e.reliable) {
+    for (const search::OutcomeEstimate& o : e.outcomes) {
+      out["estimates"][o.outcome] = {{"p", o.p},
+                                     {"ci95", {o.ci_low, o.ci_high}},
+                                     {"ess", e.ess},
+                                     {"failing_episodes", o.episodes},
+                                     {"iid_episodes_for_same_precision", o.iid_episodes}};
+    }
+    if (e.outcomes.empty()) out["upper_bound_95"] = e.upper_bound;
+  }
+  return out.dump() + "\n";
+}
+
+// Prints the estimate (table or JSON) and what it means; returns the exit code.
+int PrintEstimate(const search::Estimate& e, const EstimateArgs& args) {
+  if (args.json) {
+    std::cout << FormatEstimateJson(e) << std::flush;
+  } else if (e.reliable) {
+    if (!e.outcomes.empty()) std::cout << FormatEstimateTable(e) << std::flush;
+  }
+  if (!e.reliable) {
+    PrintWarning(fmt::format(
+        "the weights degenerate (effective sample size {:.0f} of {} weighted episodes): no "
+        "estimate is given, as its interval could not be trusted; raise --budget",
+        e.ess, e.episodes));
+  } else if (e.outcomes.empty() && !args.quiet) {
+    PrintNote(fmt::format(
+        "no failure in {} weighted episodes: the probability of failing is below {} (a 95 % "
+        "upper bound; a failure rarer than that may still exist)",
+        e.episodes, FormatPercent(e.upper_bound)));
+  }
+  return kExitSuccess;
+}
+
+int EstimateFromRecords(const EstimateArgs& args) {
+  std::string spec;
+  if (!args.scenario.file.empty()) {
+    auto program = CompileScenario(args.scenario);
+    if (!program) return kExitScenarioError;
+    spec = search::CalcSpecHash(*program);
+  }
+  const auto lines = ReadLines(args.from);
+  if (!lines) return kExitScenarioError;
+  try {
+    const search::Estimate e = search::CalcEstimate(search::ReadWeightedRecords(*lines, args.from, spec));
+    if (!args.quiet) {
+      PrintNote(fmt::format("{} in {}; effective sample size {:.0f}",
+                            FormatCount(e.episodes, "weighted episode"), args.from, e.ess));
+    }
+    return PrintEstimate(e, args);
+  } catch (const std::exception& error) {
+    PrintError(error.what());
+    return kExitScenarioError;
+  }
+}
+
+int RunEstimateCommand(const EstimateArgs& args) {
+  if (!args.from.empty()) return EstimateFromRecords(args);
+  if (args.scenario.file.empty() || args.budget == 0) {
+    PrintError("give the .prs scenario, a controller and --budget N (or --from RESULTS.jsonl)");
+    return kExitUsage;
+  }
+  InterruptWatch interrupt;
+  const auto factory = ChooseController(args.controller, interrupt.flag());
+  if (!factory) return kExitUsage;
+  auto program = CompileScenario(args.scenario);
+  if (!program) return kExitScenarioError;
+  std::unique_ptr<output::LineWriter> records;
+  if (!OpenEpisodeOutputs(args.output, "", &records)) return kExitScenarioError;
+  search::EstimateOptions options;
+  options.budget = args.budget;
+  options.run.sample = MakeSampleOptions(args.sampling);
+  options.run.seed = args.sampling.seed;
+  options.run.threads = args.sampling.threads;
+  options.run.cancel = &interrupt.flag();
+  options.run.spec_hash = search::CalcSpecHash(*program);
+  ProgressBar progress(args.budget, !args.quiet && IsStderrTerminal());
+  int64_t done = 0;
+  options.on_record = [&](const harness::EpisodeRecord& record) {
+    if (records) records->AddLine(harness::FormatRecordJson(record));
+    progress.Update(++done);
+  };
+  options.run.on_warning = WarnOnce([&] { progress.Erase(); });
+  try {
+    const search::EstimateSummary summary = search::RunEstimate(*program, *factory, options);
+    if (records) records->Commit();
+    progress.Erase();
+    if (!args.quiet) {
+      PrintNote(fmt::format(
+          "{}: {} adapting the proposal, {} weighted (effective sample size {:.0f}) on {}",
+          FormatCount(args.budget, "episode"), summary.adapt_episodes,
+          summary.estimate.episodes, summary.estimate.ess, FormatCount(summary.threads, "thread")));
+      if (!summary.scored) {
+        PrintNote("the controller reports no score: the adaptation only tells failures from "
+                  "successes, and finds rare failures more slowly (docs/harness.md, \"score\")");
+      }
+    }
+    return PrintEstimate(summary.estimate, args);
+  } catch (const std::invalid_argument& error) {  // a budget too small
+    progress.Erase();
+    PrintError(error.what());
+    return kExitUsage;
+  } catch (const search::NothingToSearch& error) {
+    progress.Erase();
+    PrintError(std::string(error.what()) + ": every scene is the same, so it fails always or "
+               "never (prs check --coordinates lists what is random)");
+    return kExitUsage;
+  } catch (const lang::ScenarioError& error) {
+    progress.Erase();
+    return ReportScenarioError(error, program->sources);
+  } catch (const sampling::BatchCancelled&) {
+    progress.Erase();
+    PrintNote(fmt::format("interrupted after {}; no estimate (run it again; the records so far "
+                          "are in {})",
+                          FormatCount(done, "episode"),
+                          records ? records->partial_path() : std::string("(no -o)")));
+    return kExitInterruptedBase + interrupt.signal_number();
+  } catch (const harness::ControllerStartError& error) {
+    progress.Erase();
+    PrintError(error.what());
+    return kExitScenarioError;
+  } catch (const std::exception& error) {
+    progress.Erase();
+    PrintError(error.what());
+    return kExitScenarioError;
+  }
+}
+
+}  // namespace
+
+CommandRunner ConfigureEstimateCommand(CLI::App& command) {
+  auto args = std::make_shared<EstimateArgs>();
+  AddScenarioOptions(command, args->scenario);
+  command.get_option("FILE")
+      ->required(false)
+      ->description("the .prs scenario (with --from: optional, then the records' program is checked)");
+  AddControllerOptions(command, args->controller);
+  command.add_option("--budget", args->budget, "episodes in all")
+      ->type_name("N")
+      ->check(IntegerAtLeast(search::kMinEstimateBudget));
+  command
+      .add_option("-o,--output", args->output,
+                  "write one JSON record per episode to OUT (the sampling phase's with their "
+                  "weights), from which --from makes the estimate again")
+      ->type_name("OUT")
+      ->check(NonEmptyPath());
+  command
+      .add_option("--from", args->from,
+                  "the estimate of a record file (prs estimate -o, or prs test -o for i.i.d. "
+                  "episodes) without running anything")
+      ->type_name("RESULTS")
+      ->check(NonEmptyPath());
+  command.add_flag("--json", args->json, "print one JSON object instead of the table");
+  AddSamplingOptions(command, args->sampling);
+  command.add_flag("-q,--quiet", args->quiet, "no summary on stderr");
+  return [args] { return RunEstimateCommand(*args); };
+}
+
+}  // namespace prs::cli

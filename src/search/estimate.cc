@@ -1,0 +1,419 @@
+// prs estimate: the adaptation loop (weighted cross-entropy toward failures), the importance-
+// sampling run from a defensive mixture, and the self-normalised estimator with its delta-method
+// interval (derivations in docs/search.md).
+#include "search/estimate.h"
+
+#include <fmt/format.h>
+
+#include <algorithm>
+#include <cmath>
+#include <map>
+#include <nlohmann/json.hpp>
+#include <stdexcept>
+
+#include "search/like.h"
+#include "search/search.h"
+
+namespace prs::search {
+namespace {
+
+constexpr double kZ95 = 1.959963984540054;
+constexpr double kSamplingWidening = 2.5;
+constexpr double kExploreShare = 0.15;  // of the budget
+constexpr int64_t kMinFailuresToFit = 10;
+constexpr size_t kProbeFailures = 8;
+constexpr size_t kKernels = 64;
+
+// The normal CDF.
+double CalcNormalCdf(double z) { return 0.5 * std::erfc(-z / std::sqrt(2.0)); }
+
+// The density at x of the normal (mean, std) truncated to [0, 1].
+double CalcTruncatedNormalDensity(double x, double mean, double std) {
+  const double mass = CalcNormalCdf((1 - mean) / std) - CalcNormalCdf(-mean / std);
+  if (!(mass > 0)) return 1;  // MixturePoints then draws this coordinate uniformly
+  const double z = (x - mean) / std;
+  return std::exp(-0.5 * z * z) / (std::sqrt(2 * M_PI) * std * mass);
+}
+
+// The failures' mean and spread per coordinate (at least kMinProposalStd), each failure
+// weighted by 1 / the density it was drawn from (`drawn_from`, null for equal weights), so that
+// they estimate the moments of the law restricted to the failures; coordinates with std 0 stay
+// uniform.
+void FitToFailures(const std::vector<const harness::EpisodeRecord*>& failures,
+                   const MixtureProposal* drawn_from, MixtureProposal& proposal) {
+  std::vector<double> w;
+  double total = 0;
+  for (const harness::EpisodeRecord* r : failures) {
+    w.push_back(drawn_from ? 1 / drawn_from->CalcDensity(r->coordinates.data()) : 1.0);
+    total += w.back();
+  }
+  for (int j = 0; j < proposal.dimension(); ++j) {
+    if (proposal.std[j] <= 0) continue;
+    double mean = 0, variance = 0;
+    for (size_t k = 0; k < failures.size(); ++k) mean += w[k] * failures[k]->coordinates[j];
+    mean /= total;
+    for (size_t k = 0; k < failures.size(); ++k) {
+      variance += w[k] * std::pow(failures[k]->coordinates[j] - mean, 2);
+    }
+    proposal.mean[j] = mean;
+    proposal.std[j] = std::max(std::sqrt(variance / total), kMinProposalStd);
+  }
+}
+
+// The normals' component as kernels around failures of the exploration, drawn with
+// probability in proportion to their weights (systematic resampling, so deterministic), with
+// a bandwidth of the failures' spread times Scott's factor K^(-1 / (d + 4)) over the d
+// coordinates failing depends on.
+void PlaceKernels(const std::vector<const harness::EpisodeRecord*>& failures,
+                  const MixtureProposal& drawn_from, MixtureProposal& proposal) {
+  std::vector<double> cumulative;
+  double total = 0;
+  for (const harness::EpisodeRecord* r : failures) {
+    total += 1 / drawn_from.CalcDensity(r->coordinates.data());
+    cumulative.push_back(total);
+  }
+  const size_t k = std::min<size_t>(kKernels, failures.size());
+  proposal.centres.clear();
+  for (size_t i = 0; i < k; ++i) {
+    const double at = (double(i) + 0.5) / double(k) * total;
+    const size_t pick = size_t(std::lower_bound(cumulative.begin(), cumulative.end(), at) -
+                               cumulative.begin());
+    proposal.centres.push_back(failures[std::min(pick, failures.size() - 1)]->coordinates);
+  }
+  const auto relevant = std::count_if(proposal.std.begin(), proposal.std.end(),
+                                      [](double s) { return s > 0; });
+  const double scott = std::pow(double(k), -1.0 / double(relevant + 4));
+  for (double& std : proposal.std) {
+    if (std > 0) std = std::max(std * scott, kMinProposalStd);
+  }
+}
+
+// Scene start + k's first attempt at points[k]; its later attempts read the stream (the probe
+// only shapes the proposal, so it need not follow any law).
+class ProbePoints : public sampling::AttemptPoints {
+ public:
+  ProbePoints(uint64_t start, std::vector<std::vector<double>> points)
+      : start_(start), points_(std::move(points)) {}
+  int dimension() const override { return int(points_.front().size()); }
+  bool Point(uint64_t, uint64_t index, int64_t attempt, double* u) const override {
+    if (attempt != 0 || index < start_ || index - start_ >= points_.size()) return false;
+    std::copy(points_[index - start_].begin(), points_[index - start_].end(), u);
+    return true;
+  }
+
+ private:
+  uint64_t start_;
+  std::vector<std::vector<double>> points_;
+};
+
+// Which coordinates failing depends on: a few failures, each run again with one coordinate
+// redrawn uniformly; a coordinate whose redraw keeps half of them failing or more gets std 0
+// (uniform) in `proposal`. Returns the probe's records.
+std::vector<harness::EpisodeRecord> ProbeCoordinates(
+    const lang::CompiledProgram& program, const harness::ControllerFactory& factory,
+    const EstimateOptions& options, const std::vector<const harness::EpisodeRecord*>& failures,
+    uint64_t start, MixtureProposal& proposal) {
+  const int d = proposal.dimension();
+  // At most a tenth of the budget; too few failures per coordinate tell nothing.
+  const size_t m = std::min<size_t>({failures.size(), kProbeFailures,
+                                     size_t(options.budget / 10 / d)});
+  if (m < kProbeFailures / 2) return {};
+  std::vector<std::vector<double>> points;
+  geometry::Rng rng(options.run.seed ^ 0x5EEDFACEULL, start);
+  for (int j = 0; j < d; ++j) {
+    for (size_t k = 0; k < m; ++k) {
+      // Spread over the failures found (the search's last ones are its deepest).
+      std::vector<double> u = failures[k * failures.size() / m]->coordinates;
+      u[j] = rng.Uniform01();
+      points.push_back(std::move(u));
+    }
+  }
+  const ProbePoints probe(start, points);
+  harness::RunOptions run = options.run;
+  run.sample.points = &probe;
+  run.start = start;
+  run.count = int64_t(points.size());
+  run.on_record = nullptr;
+  std::vector<harness::EpisodeRecord> records = harness::RunEpisodes(program, factory, run).records;
+  for (int j = 0; j < d; ++j) {
+    size_t still = 0;
+    for (size_t k = 0; k < m; ++k) still += records[size_t(j) * m + k].result.outcome != "success";
+    if (2 * still >= m) proposal.std[j] = 0;
+  }
+  for (harness::EpisodeRecord& r : records) r.search = {{"strategy", "estimate-probe"}};
+  return records;
+}
+
+// Runs `count` episodes from index `start` at points of `proposal`.
+std::vector<harness::EpisodeRecord> RunAt(const lang::CompiledProgram& program,
+                                          const harness::ControllerFactory& factory,
+                                          const EstimateOptions& options,
+                                          const MixtureProposal& proposal, uint64_t start,
+                                          int64_t count, int* threads, int64_t* rejections) {
+  const MixturePoints points(proposal);
+  harness::RunOptions run = options.run;
+  run.sample.points = &points;
+  run.start = start;
+  run.count = count;
+  run.on_record = nullptr;
+  harness::RunSummary summary = harness::RunEpisodes(program, factory, run);
+  *threads = summary.threads;
+  *rejections += summary.sampling.rejections.total;
+  return std::move(summary.records);
+}
+
+}  // namespace
+
+double MixtureProposal::CalcDensity(const double* u) const {
+  if (uniform_share >= 1) return 1;
+  auto normals = [&](const std::vector<double>& centre) {
+    double density = 1;
+    for (int j = 0; j < dimension(); ++j) {
+      if (std[j] > 0) density *= CalcTruncatedNormalDensity(u[j], centre[j], std[j]);
+    }
+    return density;
+  };
+  double gaussian = 0;
+  if (centres.empty()) {
+    gaussian = normals(mean);
+  } else {
+    for (const std::vector<double>& centre : centres) gaussian += normals(centre);
+    gaussian /= double(centres.size());
+  }
+  return uniform_share + (1 - uniform_share) * gaussian;
+}
+
+bool MixturePoints::Point(uint64_t seed, uint64_t index, int64_t attempt, double* u) const {
+  geometry::Rng rng = MakeProposalRng(seed, index, attempt);
+  const int d = dimension();
+  if (proposal_.uniform_share >= 1 || rng.Uniform01() < proposal_.uniform_share) {
+    for (int j = 0; j < d; ++j) u[j] = rng.Uniform01();
+    return true;
+  }
+  const std::vector<double>& centre =
+      proposal_.centres.empty()
+          ? proposal_.mean
+          : proposal_.centres[size_t(rng.UniformInt(0, int64_t(proposal_.centres.size()) - 1))];
+  for (int j = 0; j < d; ++j) {
+    const double v = rng.Uniform01();
+    if (proposal_.std[j] <= 0) {
+      u[j] = v;
+      continue;
+    }
+    const double x = geometry::MapTruncatedNormal(v, centre[j], proposal_.std[j], 0, 1);
+    u[j] = std::isnan(x) ? rng.Uniform01() : std::min(x, 1.0 - 0x1.0p-53);
+  }
+  return true;
+}
+
+Estimate CalcEstimate(const std::vector<WeightedOutcome>& records) {
+  if (records.empty()) throw std::invalid_argument("no records to estimate from");
+  Estimate estimate;
+  estimate.episodes = int64_t(records.size());
+  double total = 0, squares = 0, share = 1;
+  std::map<std::string, std::pair<double, int64_t>> failed;  // outcome -> (weight, episodes)
+  for (const WeightedOutcome& r : records) {
+    if (!(r.weight > 0) || !std::isfinite(r.weight)) {
+      throw std::invalid_argument(fmt::format("a record's weight is {}, not a positive number",
+                                              r.weight));
+    }
+    total += r.weight;
+    squares += r.weight * r.weight;
+    share = std::min(share, r.uniform_share);
+    if (r.outcome == "success") continue;
+    failed[r.outcome].first += r.weight;
+    ++failed[r.outcome].second;
+  }
+  estimate.ess = total * total / squares;
+  estimate.reliable =
+      estimate.ess >= kMinEss && estimate.ess >= 0.05 * double(estimate.episodes);
+  const bool normalised = std::any_of(records.begin(), records.end(),
+                                      [](const auto& r) { return r.normalised; });
+  const double n = double(records.size());
+  for (const auto& [outcome, weight_and_count] : failed) {
+    // Self-normalised, sum w 1F / sum w, with the delta method's variance; or, when the weights'
+    // mean is known to be 1, the plain mean of w 1F with its sample variance.
+    const double p = weight_and_count.first / (normalised ? total : n);
+    OutcomeEstimate o{outcome, weight_and_count.second, p};
+    double variance = 0;
+    for (const WeightedOutcome& r : records) {
+      const double f = r.outcome == outcome ? 1.0 : 0.0;
+      variance += normalised ? r.weight * r.weight * (f - p) * (f - p)
+                             : (r.weight * f - p) * (r.weight * f - p);
+    }
+    variance /= normalised ? total * total : n * (n - 1);
+    const double half = kZ95 * std::sqrt(variance);
+    o.ci_low = std::max(0.0, o.p - half);
+    o.ci_high = std::min(1.0, o.p + half);
+    o.iid_episodes = variance > 0 ? o.p * (1 - o.p) / variance : 0;
+    estimate.outcomes.push_back(o);
+  }
+  std::stable_sort(estimate.outcomes.begin(), estimate.outcomes.end(),
+                   [](const auto& a, const auto& b) { return a.p > b.p; });
+  if (estimate.outcomes.empty()) {
+    // No failure in n draws from the proposal: P(fail | proposal) <= 1 - 0.05^(1/n) at 95 %,
+    // and p = E[w 1F] / E[w] <= P(fail | proposal) / (share * mean weight), as w <= 1 / share.
+    const double bound_proposal = 1 - std::pow(0.05, 1 / n);
+    const double mean_weight = normalised ? total / n : 1.0;
+    estimate.upper_bound = std::min(1.0, bound_proposal / (share * mean_weight));
+  }
+  return estimate;
+}
+
+std::vector<WeightedOutcome> ReadWeightedRecords(const std::vector<std::string>& lines,
+                                                 const std::string& path,
+                                                 const std::string& spec_hash) {
+  std::vector<WeightedOutcome> weighted, plain;
+  bool searched = false;
+  for (size_t n = 0; n < lines.size(); ++n) {
+    if (lines[n].find_first_not_of(" \t\r") == std::string::npos) continue;
+    const std::string where = fmt::format("{}:{}", path, n + 1);
+    const nlohmann::json record = nlohmann::json::parse(lines[n], nullptr, false);
+    if (!record.is_object() || !record.contains("outcome") || !record["outcome"].is_string()) {
+      throw std::runtime_error(where + ": not an episode record (a JSON object with \"outcome\")");
+    }
+    if (!spec_hash.empty() && record.contains("spec") && record["spec"] != spec_hash) {
+      throw std::runtime_error(where + ": the record was drawn from another program (fingerprint " +
+                               record["spec"].dump() + ", this one's \"" + spec_hash + "\")");
+    }
+    WeightedOutcome r{record["outcome"].get<std::string>()};
+    const nlohmann::json search = record.value("search", nlohmann::json());
+    if (search.is_object() && search.value("strategy", "") == "importance") {
+      r.weight = search.value("weight", 0.0);
+      r.uniform_share = search.value("uniform_share", 0.0);
+      r.normalised = search.value("normalised", true);
+      if (!(r.weight > 0) || !(r.uniform_share > 0)) {
+        throw std::runtime_error(where + ": an importance-sampling record without a positive "
+                                         "\"weight\" and \"uniform_share\"");
+      }
+      weighted.push_back(r);
+    } else if (search.is_object()) {
+      searched = true;  // a search's or an adaptation's scenes: not drawn from the program's law
+    } else {
+      plain.push_back(r);
+    }
+  }
+  if (!weighted.empty()) return weighted;
+  if (!plain.empty()) return plain;
+  throw std::runtime_error(
+      searched ? path + " holds only records of a search, whose scenes are not drawn from the "
+                        "program's law: estimate with `prs estimate`, whose records carry weights"
+               : path + " holds no record");
+}
+
+EstimateSummary RunEstimate(const lang::CompiledProgram& program,
+                            const harness::ControllerFactory& factory,
+                            const EstimateOptions& options) {
+  if (options.budget < kMinEstimateBudget) {
+    throw std::invalid_argument(fmt::format("a budget of {} episodes is too small to adapt a "
+                                            "proposal and then sample: give at least {}",
+                                            options.budget, kMinEstimateBudget));
+  }
+  const int dimension = int(sampling::DescribeCoordinates(program, options.run.sample).size());
+  if (dimension == 0) throw NothingToSearch("the program draws nothing at random");
+  EstimateSummary summary;
+  const int64_t adapt = std::max<int64_t>(60, std::llround(options.adapt_share * options.budget));
+  const int64_t piece = 200;  // sampling episodes per batch (records arrive between them)
+  MixtureProposal proposal{std::vector<double>(dimension, 0.5),
+                           std::vector<double>(dimension, 1 / std::sqrt(12.0)), 1.0};
+  uint64_t next = 0;
+  // Adaptation: the failure search's cross-entropy method (search.cc), whose records lead the
+  // record file.
+  SearchOptions search;
+  search.strategy = Strategy::kCrossEntropy;
+  search.budget = adapt;
+  search.run = options.run;
+  search.on_record = options.on_record;
+  SearchSummary found = RunSearch(program, factory, search);
+  summary.threads = found.threads;
+  summary.generations = found.generations;
+  summary.adapt_episodes = adapt;
+  next = uint64_t(adapt);
+  if (!found.proposal_mean.empty()) {
+    proposal.mean = found.proposal_mean;
+    proposal.std = found.proposal_std;
+  }
+  // The sampling proposal: fitted to every failure the search found when there are enough (the
+  // optimal proposal is the law restricted to the failures), widened to cover their region.
+  std::vector<const harness::EpisodeRecord*> failures;
+  for (const harness::EpisodeRecord& r : found.records) {
+    summary.scored = summary.scored || r.result.score.has_value();
+    if (r.result.outcome != "success" && !r.coordinates.empty()) failures.push_back(&r);
+  }
+  if (int64_t(failures.size()) >= kMinFailuresToFit) FitToFailures(failures, nullptr, proposal);
+  proposal.uniform_share = options.uniform_share;
+  summary.records = std::move(found.records);
+  auto keep = [&](std::vector<harness::EpisodeRecord>&& records) {
+    next += records.size();
+    for (harness::EpisodeRecord& r : records) {
+      if (options.on_record) options.on_record(r);
+      summary.records.push_back(std::move(r));
+    }
+  };
+  if (!failures.empty()) {
+    keep(ProbeCoordinates(program, factory, options, failures, next, proposal));
+  }
+  // The search's failures crowd around its best point: explore around them widely and fit
+  // the failures found there with their weights, which reach the whole failure region. The
+  // exploration's episodes are weighted too (below), as draws of its wider proposal.
+  std::vector<harness::EpisodeRecord> explored;
+  MixtureProposal explore = proposal;
+  int64_t rejections = 0;
+  if (int64_t(failures.size()) >= kMinFailuresToFit) {
+    for (double& std : explore.std) std = std > 0 ? std::max(4 * std, 0.1) : 0;
+    const int64_t count = std::llround(kExploreShare * double(options.budget));
+    explored = RunAt(program, factory, options, explore, next, count, &summary.threads,
+                     &rejections);
+    next += uint64_t(count);
+    std::vector<const harness::EpisodeRecord*> found_there;
+    for (const harness::EpisodeRecord& r : explored) {
+      if (r.result.outcome != "success") found_there.push_back(&r);
+    }
+    if (int64_t(found_there.size()) >= kMinFailuresToFit) {
+      FitToFailures(found_there, &explore, proposal);
+      PlaceKernels(found_there, explore, proposal);
+    } else {
+      proposal = explore;
+    }
+  }
+  for (double& std : proposal.std) std *= kSamplingWidening;
+  // Nothing to aim at: the program's own law, whose episodes bound the failure rate best.
+  if (failures.empty()) proposal.uniform_share = 1;
+  summary.adapt_episodes = int64_t(next) - int64_t(explored.size());
+  summary.proposal = proposal;
+  std::vector<harness::EpisodeRecord> sampled;
+  while (int64_t(next) < options.budget) {  // in pieces, so that records arrive as they finish
+    const int64_t count = std::min<int64_t>(piece, options.budget - int64_t(next));
+    std::vector<harness::EpisodeRecord> records =
+        RunAt(program, factory, options, proposal, next, count, &summary.threads, &rejections);
+    next += uint64_t(count);
+    for (harness::EpisodeRecord& r : records) sampled.push_back(std::move(r));
+  }
+  // Both weighted phases as draws of their deterministic mixture (the balance heuristic): an
+  // episode's weight is 1 / ((n1 q1 + n2 q2) / (n1 + n2)) at its point. Without a rejection the
+  // accepted set is (as far as thousands of attempts tell) the whole cube, the weights' mean is
+  // 1, and the plain mean of w 1F needs no normalising.
+  const double n1 = double(explored.size()), n2 = double(sampled.size());
+  std::vector<WeightedOutcome> weighted;
+  for (std::vector<harness::EpisodeRecord>* phase : {&explored, &sampled}) {
+    for (harness::EpisodeRecord& r : *phase) {
+      const double* u = r.coordinates.data();
+      const double density =
+          (n1 * (n1 > 0 ? explore.CalcDensity(u) : 0) + n2 * proposal.CalcDensity(u)) / (n1 + n2);
+      const WeightedOutcome w{r.result.outcome, 1 / density, proposal.uniform_share,
+                              rejections > 0};
+      weighted.push_back(w);
+      r.search = {{"strategy", "importance"},
+                  {"phase", phase == &explored ? "explore" : "sample"},
+                  {"weight", w.weight},
+                  {"uniform_share", w.uniform_share},
+                  {"normalised", w.normalised}};
+      if (options.on_record) options.on_record(r);
+      summary.records.push_back(std::move(r));
+    }
+  }
+  summary.estimate = CalcEstimate(weighted);
+  return summary;
+}
+
+}  // namespace prs::search

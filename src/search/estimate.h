@@ -1,0 +1,133 @@
+// How often a controller fails under the program's own law (docs/search.md, "How often does it
+// fail: prs estimate"): a cross-entropy adaptation of a proposal over the scene coordinates
+// toward failures, then importance sampling from it kept as a defensive mixture with the
+// uniform law, and self-normalised estimates with confidence intervals.
+#pragma once
+
+#include <cstdint>
+#include <functional>
+#include <optional>
+#include <string>
+#include <vector>
+
+#include "harness/harness.h"
+#include "sampling/sampler.h"
+
+namespace prs::search {
+
+/// A defensive mixture over the unit cube: with probability `uniform_share` a uniform point,
+/// else independent normals per coordinate truncated to [0, 1) (around `mean`, or around one of
+/// `centres` picked at random). Its density is at least
+/// `uniform_share` everywhere, so importance weights stay below 1 / uniform_share.
+struct MixtureProposal {
+  /// Per coordinate; a `std` of 0 makes that coordinate uniform in the normals' component too
+  /// (one that failing does not depend on).
+  std::vector<double> mean, std;
+  double uniform_share = 1;
+  /// When not empty, the normals' component is itself an equal mixture of normals around
+  /// these points (each of dimension() coordinates; `mean` unused), which follows a failure
+  /// region of any shape.
+  std::vector<std::vector<double>> centres;
+
+  /// The density at `u` (dimension() coordinates in [0, 1)).
+  double CalcDensity(const double* u) const;
+  int dimension() const { return static_cast<int>(mean.size()); }
+};
+
+/// Every attempt of every scene at a point of the mixture (none reads the stream alone), so
+/// that the accepted points are distributed as the mixture restricted to the accepted set, and
+/// 1 / CalcDensity is each scene's importance weight against the program's law.
+class MixturePoints : public sampling::AttemptPoints {
+ public:
+  explicit MixturePoints(MixtureProposal proposal) : proposal_(std::move(proposal)) {}
+  int dimension() const override { return proposal_.dimension(); }
+  bool Point(uint64_t seed, uint64_t index, int64_t attempt, double* u) const override;
+
+ private:
+  MixtureProposal proposal_;
+};
+
+/// One failure outcome's probability under the program's law.
+struct OutcomeEstimate {
+  std::string outcome;
+  int64_t episodes = 0;  // weighted episodes that ended in it
+  double p = 0;          // the self-normalised estimate
+  double ci_low = 0, ci_high = 0;  // 95 % (delta method); [0, bound] when none failed so
+  /// The i.i.d. episodes whose binomial estimate would be as precise: p (1 - p) / variance.
+  double iid_episodes = 0;
+};
+
+/// What a set of weighted records says.
+struct Estimate {
+  int64_t episodes = 0;  // weighted episodes (the importance-sampling run)
+  double ess = 0;        // effective sample size, (sum w)^2 / sum w^2
+  /// False when the weights degenerate (ESS under kMinEss or under 5 % of the episodes): the
+  /// numbers are then not to be trusted, and `prs estimate` says so instead of printing them.
+  bool reliable = true;
+  std::vector<OutcomeEstimate> outcomes;  // failures seen, largest p first
+  /// With no failure seen: an upper bound on the probability of any failure at 95 %
+  /// (docs/search.md derives it from the mixture's uniform share); else 0.
+  double upper_bound = 0;
+};
+
+/// The fewest effective episodes an estimate is reported for.
+inline constexpr double kMinEss = 30;
+
+/// A record as the estimate reads it.
+struct WeightedOutcome {
+  std::string outcome;
+  double weight = 1;          // 1 / proposal density (1 for i.i.d. records)
+  double uniform_share = 1;   // of the proposal it was drawn from (1: i.i.d.)
+  /// True when the accepted set may be smaller than the cube (the run saw rejections): then
+  /// the estimate is self-normalised, sum w 1F / sum w; else the plain mean of w 1F.
+  bool normalised = true;
+};
+
+/// The estimate of weighted outcomes (throws std::invalid_argument when there are none or a
+/// weight is not positive and finite).
+Estimate CalcEstimate(const std::vector<WeightedOutcome>& records);
+
+/// Reads the records an estimate is made of from JSON Lines (`prs estimate -o`, or `prs test
+/// -o` for i.i.d. records, weight 1): those of the importance-sampling phase when there are
+/// any, else every record. Throws std::runtime_error "PATH:LINE: ..." for a line that is not a
+/// record, or a record of another program when `spec_hash` is not empty.
+std::vector<WeightedOutcome> ReadWeightedRecords(const std::vector<std::string>& lines,
+                                                 const std::string& path,
+                                                 const std::string& spec_hash);
+
+struct EstimateOptions {
+  int64_t budget = 0;         // episodes in all
+  double adapt_share = 0.3;   // of the budget spent adapting the proposal
+  double uniform_share = 0.2; // the mixture's uniform share in the sampling phase
+  /// Seed, threads, sampling options, cancel, save_failures_dir (start, count, on_record and
+  /// sample.points are set here).
+  harness::RunOptions run;
+  /// Each record in evaluation order (adaptation first), as its generation finishes.
+  std::function<void(const harness::EpisodeRecord&)> on_record;
+};
+
+struct EstimateSummary {
+  std::vector<harness::EpisodeRecord> records;  // adaptation, then sampling
+  int64_t adapt_episodes = 0;
+  int generations = 0;  // of the adaptation
+  bool scored = false;  // the controller reported scores
+  MixtureProposal proposal;  // the sampling phase's
+  Estimate estimate;
+  int threads = 1;
+};
+
+/// The smallest budget RunEstimate takes.
+inline constexpr int64_t kMinEstimateBudget = 200;
+
+/// Adapts a proposal toward failures in generations (the cross-entropy method for rare
+/// events: the elite are the worst tenth, or every failure once a tenth fail, fitted with their
+/// importance weights), then runs the rest of the budget from it mixed with the uniform law;
+/// records of that phase carry "search": {"strategy": "importance", "weight": W,
+/// "uniform_share": S}. A pure function of (program, controller, options) for any thread
+/// count. Throws std::invalid_argument for a budget under kMinEstimateBudget, NothingToSearch,
+/// and what harness::RunEpisodes throws.
+EstimateSummary RunEstimate(const lang::CompiledProgram& program,
+                            const harness::ControllerFactory& factory,
+                            const EstimateOptions& options);
+
+}  // namespace prs::search

@@ -1,0 +1,187 @@
+// prs estimate's statistics: the mixture's density is the one its points are drawn from, the
+// estimator's hand computations, and coverage against known truths — a corner of a triangle
+// that rejects half the attempts (exact in closed form), and Table-Cube's planted failures —
+// with the intervals covering in at least 17 of 20 seeds and the error beating i.i.d. sampling.
+#include "search/estimate.h"
+
+#include <gtest/gtest.h>
+
+#include <algorithm>
+#include <cmath>
+
+#include "harness/registry.h"
+#include "sampling/test/scene_checks.h"
+
+namespace prs::search {
+namespace {
+
+using sampling::testing_checks::CompileOrDie;
+
+TEST(MixtureProposalTest, ItsPointsFollowItsDensity) {
+  // E_q[1 / q] = 1 exactly when q is the density the points are drawn from; and a coordinate's
+  // share in [0, 0.1) matches the density's integral there.
+  const MixtureProposal proposal{{0.1, 0.7}, {0.05, 0.2}, 0.2};
+  const MixturePoints points(proposal);
+  const int n = 200'000;
+  double sum_inverse = 0;
+  int low = 0;
+  for (int i = 0; i < n; ++i) {
+    double u[2];
+    ASSERT_TRUE(points.Point(3, uint64_t(i), 0, u));
+    ASSERT_TRUE(u[0] >= 0 && u[0] < 1 && u[1] >= 0 && u[1] < 1);
+    sum_inverse += 1 / proposal.CalcDensity(u);
+    low += u[0] < 0.1;
+  }
+  EXPECT_NEAR(sum_inverse / n, 1.0, 0.01);
+  // P(u0 < 0.1) = 0.2 * 0.1 + 0.8 * (Phi(0) - Phi(-2)) / (Phi(18) - Phi(-2)).
+  const double phi_m2 = 0.5 * std::erfc(2 / std::sqrt(2.0));
+  const double expected = 0.02 + 0.8 * (0.5 - phi_m2) / (1 - phi_m2);
+  EXPECT_NEAR(double(low) / n, expected, 4 * std::sqrt(expected / n));
+}
+
+TEST(CalcEstimateTest, WeightedSharesIntervalsAndTheBoundWithoutFailures) {
+  std::vector<WeightedOutcome> records;
+  for (int copy = 0; copy < 10; ++copy) {
+    records.insert(records.end(), {{"success", 1, 0.2}, {"no-path", 1, 0.2},
+                                   {"success", 2, 0.2}, {"no-path", 4, 0.2}});
+  }
+  const Estimate e = CalcEstimate(records);
+  ASSERT_EQ(e.outcomes.size(), 1u);
+  EXPECT_EQ(e.outcomes[0].episodes, 20);
+  EXPECT_DOUBLE_EQ(e.outcomes[0].p, 5.0 / 8);
+  // Delta method: sum w^2 (f - p)^2 / (sum w)^2.
+  const double p = 5.0 / 8;
+  const double variance =
+      10 * (1 * p * p + 1 * (1 - p) * (1 - p) + 4 * p * p + 16 * (1 - p) * (1 - p)) / 6400;
+  EXPECT_NEAR(e.outcomes[0].ci_high - e.outcomes[0].p, 1.959964 * std::sqrt(variance), 1e-6);
+  EXPECT_NEAR(e.outcomes[0].p - e.outcomes[0].ci_low, 1.959964 * std::sqrt(variance), 1e-6);
+  EXPECT_NEAR(e.outcomes[0].iid_episodes, p * (1 - p) / variance, 1e-9);
+  EXPECT_DOUBLE_EQ(e.ess, 6400.0 / 220);
+  EXPECT_FALSE(e.reliable) << "an ESS of 29 is no estimate";
+  // 100 i.i.d. successes: the rule of three, exactly 1 - 0.05^(1/100).
+  const Estimate none = CalcEstimate(std::vector<WeightedOutcome>(100, {"success", 1, 1}));
+  EXPECT_TRUE(none.outcomes.empty());
+  EXPECT_NEAR(none.upper_bound, 1 - std::pow(0.05, 0.01), 1e-12);
+  EXPECT_THROW(CalcEstimate({{"success", 0, 1}}), std::invalid_argument);
+  EXPECT_THROW(CalcEstimate({}), std::invalid_argument);
+}
+
+// Fails when the object's centre is in the corner [0, 0.04)^2; the score is how far it is.
+class CornerController : public harness::Controller {
+ public:
+  harness::EpisodeResult RunEpisode(const sampling::SampledScene& s, const std::string&) override {
+    const Eigen::Vector3d& p = s.scene.objects[0].p_WO;
+    const double score = std::max(p.x() - 0.04, p.y() - 0.04);
+    harness::EpisodeResult result{score <= 0 ? "corner" : "success", ""};
+    result.score = score;
+    return result;
+  }
+};
+
+struct Coverage {
+  int covered = 0;
+  std::vector<double> errors, iid_errors;  // relative
+};
+
+// `seeds` estimates with `budget` episodes each, and i.i.d. runs of the same budget.
+Coverage MeasureCoverage(const lang::CompiledProgram& program,
+                         const harness::ControllerFactory& factory, double truth,
+                         const std::string& outcome, int64_t budget, int seeds,
+                         int first_seed = 1) {
+  Coverage c;
+  for (int seed = first_seed; seed < first_seed + seeds; ++seed) {
+    EstimateOptions options;
+    options.budget = budget;
+    options.run.seed = uint64_t(seed);
+    options.run.threads = 2;
+    const EstimateSummary summary = RunEstimate(program, factory, options);
+    EXPECT_TRUE(summary.estimate.reliable) << "seed " << seed;
+    double p = 0, low = 0, high = 0;
+    for (const OutcomeEstimate& o : summary.estimate.outcomes) {
+      if (o.outcome == outcome) std::tie(p, low, high) = std::tuple(o.p, o.ci_low, o.ci_high);
+    }
+    c.covered += low <= truth && truth <= high;
+    c.errors.push_back(std::abs(p - truth) / truth);
+    harness::RunOptions iid;
+    iid.seed = uint64_t(seed);
+    iid.count = budget;
+    iid.threads = 2;
+    int64_t failures = 0;
+    for (const auto& r : harness::RunEpisodes(program, factory, iid).records) {
+      failures += r.result.outcome == outcome;
+    }
+    c.iid_errors.push_back(std::abs(double(failures) / double(budget) - truth) / truth);
+  }
+  return c;
+}
+
+double Median(std::vector<double> x) {
+  std::sort(x.begin(), x.end());
+  return (x[(x.size() - 1) / 2] + x[x.size() / 2]) / 2;
+}
+
+TEST(RunEstimateTest, ACornerOfATriangleThatRejectsHalfTheAttemptsIsCovered) {
+  // Uniform in the unit square, kept below the diagonal (half the attempts are rejected): the
+  // corner [0, 0.04)^2 holds 0.0016 / 0.5 = 0.32 % of the scenes, exactly.
+  const auto program = CompileOrDie(
+      "c = Object at V3D(Range(0, 1), Range(0, 1), 0), with width 0.01, with length 0.01, "
+      "with height 0.01\nrequire c.position.x + c.position.y < 1\n");
+  ASSERT_TRUE(program);
+  const harness::ControllerFactory factory = [] { return std::make_unique<CornerController>(); };
+  const Coverage c = MeasureCoverage(*program, factory, 0.0032, "corner", 1000, 20);
+  EXPECT_GE(c.covered, 17) << "95 % intervals over 20 seeds";
+  EXPECT_LE(Median(c.errors), 0.25);
+  EXPECT_LT(Median(c.errors), Median(c.iid_errors) / 2) << "i.i.d. with the same budget";
+}
+
+TEST(RunEstimateTest, TheTableCubePlantedFailuresAreCovered) {
+  const auto program = sampling::testing_checks::CompileExample("table_cube.prs");
+  ASSERT_TRUE(program);
+  // The truths, by i.i.d. sampling (docs/benchmarks.md: `prs test examples/table_cube.prs
+  // --controller planted-1-... -n 2000000 -s 11`): 2,131 and 20,338 failures in 2,000,000.
+  const struct {
+    harness::PlantedFailure failure;
+    double truth;
+  } cases[] = {{harness::PlantedOnePermille(), 2131.0 / 2e6},
+               {harness::PlantedOnePercent(), 20338.0 / 2e6}};
+  for (const auto& [failure, truth] : cases) {
+    SCOPED_TRACE(truth);
+    const harness::ControllerFactory factory = [failure] {
+      return harness::MakePlantedController(failure);
+    };
+    const Coverage c = MeasureCoverage(*program, factory, truth, "planted-failure", 2000, 20);
+    EXPECT_GE(c.covered, 17) << "95 % intervals over 20 seeds";
+    EXPECT_LE(Median(c.errors), 0.25);
+    EXPECT_LT(Median(c.errors), Median(c.iid_errors)) << "i.i.d. with the same budget";
+  }
+}
+
+TEST(RunEstimateTest, RecordsAreTheSameForAnyThreadCountAndCarryTheirWeights) {
+  const auto program = sampling::testing_checks::CompileExample("table_cube.prs");
+  const harness::ControllerFactory factory = [] {
+    return harness::MakePlantedController(harness::PlantedOnePercent());
+  };
+  std::vector<std::vector<harness::EpisodeRecord>> runs;
+  for (const int threads : {1, 2}) {
+    EstimateOptions options;
+    options.budget = 400;
+    options.run.seed = 5;
+    options.run.threads = threads;
+    runs.push_back(RunEstimate(*program, factory, options).records);
+  }
+  ASSERT_EQ(runs[0].size(), 400u);
+  for (size_t i = 0; i < runs[0].size(); ++i) {
+    EXPECT_EQ(runs[0][i].result.outcome, runs[1][i].result.outcome);
+    EXPECT_EQ(runs[0][i].coordinates, runs[1][i].coordinates);
+    EXPECT_EQ(runs[0][i].search, runs[1][i].search);
+  }
+  EXPECT_EQ(runs[0].back().search["strategy"], "importance");
+  EXPECT_GT(runs[0].back().search["weight"].get<double>(), 0);
+  EXPECT_LE(runs[0].back().search["weight"].get<double>(), 1 / 0.2);
+  EstimateOptions tiny;
+  tiny.budget = 50;
+  EXPECT_THROW(RunEstimate(*program, factory, tiny), std::invalid_argument);
+}
+
+}  // namespace
+}  // namespace prs::search
