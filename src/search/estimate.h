@@ -59,7 +59,7 @@ struct OutcomeEstimate {
 
 /// What a set of weighted records says.
 struct Estimate {
-  int64_t episodes = 0;  // weighted episodes (the importance-sampling run)
+  int64_t episodes = 0;  // weighted episodes (exploration and sampling)
   double ess = 0;        // effective sample size, (sum w)^2 / sum w^2
   /// False when the weights degenerate (ESS under kMinEss or under 5 % of the episodes): the
   /// numbers are then not to be trusted, and `prs estimate` says so instead of printing them.
@@ -108,8 +108,8 @@ struct EstimateOptions {
 
 struct EstimateSummary {
   std::vector<harness::EpisodeRecord> records;  // adaptation, then sampling
-  int64_t adapt_episodes = 0;
-  int generations = 0;  // of the adaptation
+  int64_t adapt_episodes = 0;  // unweighted: the search's and the probe's
+  int generations = 0;          // of the search
   bool scored = false;  // the controller reported scores
   MixtureProposal proposal;  // the sampling phase's
   Estimate estimate;
@@ -119,13 +119,16 @@ struct EstimateSummary {
 /// The smallest budget RunEstimate takes.
 inline constexpr int64_t kMinEstimateBudget = 200;
 
-/// Adapts a proposal toward failures in generations (the cross-entropy method for rare
-/// events: the elite are the worst tenth, or every failure once a tenth fail, fitted with their
-/// importance weights), then runs the rest of the budget from it mixed with the uniform law;
-/// records of that phase carry "search": {"strategy": "importance", "weight": W,
-/// "uniform_share": S}. A pure function of (program, controller, options) for any thread
-/// count. Throws std::invalid_argument for a budget under kMinEstimateBudget, NothingToSearch,
-/// and what harness::RunEpisodes throws.
+/// Adapts a proposal toward failures — the failure search's cross-entropy method on
+/// adapt_share of the budget, a probe of which coordinates failing depends on (the others stay
+/// uniform), an exploration around the failures (15 %) whose weighted failures place the
+/// kernels of the sampling proposal — then runs the rest of the budget from that proposal
+/// mixed with the uniform law. The exploration's and the sampling's records carry "search":
+/// {"strategy": "importance", "phase", "weight": W, "uniform_share": S, "normalised"}, their
+/// weights those of both phases' deterministic mixture (docs/search.md derives them). A pure
+/// function of (program, controller, options) for any thread count. Throws
+/// std::invalid_argument for a budget under kMinEstimateBudget, NothingToSearch, and what
+/// harness::RunEpisodes throws.
 EstimateSummary RunEstimate(const lang::CompiledProgram& program,
                             const harness::ControllerFactory& factory,
                             const EstimateOptions& options);
