@@ -33,7 +33,7 @@ struct EstimateArgs {
   bool quiet = false;
 };
 
-std::string FormatPercent(double p) { return fmt::format("{:.3g} %", 100 * p); }
+std::string FormatPercent(double p) { return fmt::format("{:#.3g} %", 100 * p); }
 
 std::string FormatEstimateTable(const search::Estimate& e) {
   TextTable table({"outcome", "p", "95% interval", "failed", "i.i.d. episodes for as tight"},

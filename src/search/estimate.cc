@@ -19,7 +19,9 @@ namespace {
 
 constexpr double kZ95 = 1.959963984540054;
 constexpr double kSamplingWidening = 2.5;
-constexpr double kExploreShare = 0.15;  // of the budget
+constexpr double kExploreShare = 0.1;  // of the budget
+constexpr double kWalkShare = 0.1;     // of the budget
+constexpr size_t kChains = 16;
 constexpr int64_t kMinFailuresToFit = 10;
 constexpr size_t kProbeFailures = 8;
 constexpr size_t kKernels = 64;
@@ -88,6 +90,28 @@ void PlaceKernels(const std::vector<const harness::EpisodeRecord*>& failures,
   }
 }
 
+// Kernels around `points` (equal weights; at most kKernels of them, evenly spaced), with a
+// bandwidth of their spread times Scott's factor, on the coordinates with std > 0.
+void PlaceKernelsAt(const std::vector<std::vector<double>>& points, MixtureProposal& proposal) {
+  const double n = double(points.size());
+  for (int j = 0; j < proposal.dimension(); ++j) {
+    if (proposal.std[j] <= 0) continue;
+    double mean = 0, variance = 0;
+    for (const auto& u : points) mean += u[j] / n;
+    for (const auto& u : points) variance += std::pow(u[j] - mean, 2) / n;
+    proposal.std[j] = std::sqrt(variance);
+  }
+  const size_t k = std::min<size_t>(kKernels, points.size());
+  proposal.centres.clear();
+  for (size_t i = 0; i < k; ++i) proposal.centres.push_back(points[i * points.size() / k]);
+  const auto relevant = std::count_if(proposal.std.begin(), proposal.std.end(),
+                                      [](double s) { return s > 0; });
+  const double scott = std::pow(double(k), -1.0 / double(relevant + 4));
+  for (double& std : proposal.std) {
+    if (std > 0) std = std::max(std * scott, kMinProposalStd);
+  }
+}
+
 // Scene start + k's first attempt at points[k]; its later attempts read the stream (the probe
 // only shapes the proposal, so it need not follow any law).
 class ProbePoints : public sampling::AttemptPoints {
@@ -105,6 +129,21 @@ class ProbePoints : public sampling::AttemptPoints {
   uint64_t start_;
   std::vector<std::vector<double>> points_;
 };
+
+// Episodes start, start + 1, ... with their first attempts at `points` (ProbePoints).
+std::vector<harness::EpisodeRecord> RunAtPoints(const lang::CompiledProgram& program,
+                                                const harness::ControllerFactory& factory,
+                                                const EstimateOptions& options, uint64_t start,
+                                                std::vector<std::vector<double>> points) {
+  const int64_t count = int64_t(points.size());
+  const ProbePoints probe(start, std::move(points));
+  harness::RunOptions run = options.run;
+  run.sample.points = &probe;
+  run.start = start;
+  run.count = count;
+  run.on_record = nullptr;
+  return harness::RunEpisodes(program, factory, run).records;
+}
 
 // Which coordinates failing depends on: a few failures, each run again with one coordinate
 // redrawn uniformly; a coordinate whose redraw keeps half of them failing or more gets std 0
@@ -128,13 +167,8 @@ std::vector<harness::EpisodeRecord> ProbeCoordinates(
       points.push_back(std::move(u));
     }
   }
-  const ProbePoints probe(start, points);
-  harness::RunOptions run = options.run;
-  run.sample.points = &probe;
-  run.start = start;
-  run.count = int64_t(points.size());
-  run.on_record = nullptr;
-  std::vector<harness::EpisodeRecord> records = harness::RunEpisodes(program, factory, run).records;
+  std::vector<harness::EpisodeRecord> records =
+      RunAtPoints(program, factory, options, start, std::move(points));
   for (int j = 0; j < d; ++j) {
     size_t still = 0;
     for (size_t k = 0; k < m; ++k) still += records[size_t(j) * m + k].result.outcome != "success";
@@ -142,6 +176,51 @@ std::vector<harness::EpisodeRecord> ProbeCoordinates(
   }
   for (harness::EpisodeRecord& r : records) r.search = {{"strategy", "estimate-probe"}};
   return records;
+}
+
+// Random walks that stay among the failures (Metropolis for the law restricted to them): from
+// `starts`, each step moves the coordinates failing depends on (std > 0 in `proposal`) by a
+// normal step, reflected into [0, 1), and keeps the move when the episode there fails at that
+// very point. The step adapts toward a third of the moves kept. Returns every chain's state
+// after each of its later steps (the law restricted to the failures, roughly); the walk's
+// records go to `records`.
+std::vector<std::vector<double>> WalkFailures(const lang::CompiledProgram& program,
+                                              const harness::ControllerFactory& factory,
+                                              const EstimateOptions& options,
+                                              std::vector<std::vector<double>> chains,
+                                              const MixtureProposal& proposal, int64_t budget,
+                                              uint64_t& next,
+                                              std::vector<harness::EpisodeRecord>& records) {
+  std::vector<double> step = proposal.std;
+  geometry::Rng rng(options.run.seed ^ 0x3A1C5EEDULL, next);
+  std::vector<std::vector<double>> states;
+  const int64_t rounds = budget / int64_t(chains.size());
+  for (int64_t round = 0; round < rounds; ++round) {
+    std::vector<std::vector<double>> moves = chains;
+    for (std::vector<double>& u : moves) {
+      for (size_t j = 0; j < u.size(); ++j) {
+        if (step[j] <= 0) continue;
+        double x = std::fmod(std::abs(u[j] + step[j] * geometry::MapNormal(rng.Uniform01())), 2.0);
+        if (x >= 1) x = 2 - x;
+        u[j] = std::min(x, 1.0 - 0x1.0p-53);
+      }
+    }
+    std::vector<harness::EpisodeRecord> ran = RunAtPoints(program, factory, options, next, moves);
+    next += moves.size();
+    int kept = 0;
+    for (size_t k = 0; k < chains.size(); ++k) {
+      if (ran[k].result.outcome != "success" && ran[k].coordinates == moves[k]) {
+        chains[k] = moves[k];
+        ++kept;
+      }
+      if (round >= rounds / 3) states.push_back(chains[k]);  // after a burn-in
+      ran[k].search = {{"strategy", "estimate-walk"}};
+      records.push_back(std::move(ran[k]));
+    }
+    const double rate = double(kept) / double(chains.size());
+    for (double& s : step) s *= rate < 0.2 ? 0.7 : rate > 0.45 ? 1.4 : 1.0;
+  }
+  return states;
 }
 
 // Runs `count` episodes from index `start` at points of `proposal`.
@@ -356,7 +435,7 @@ EstimateSummary RunEstimate(const lang::CompiledProgram& program,
   // The search's failures crowd around its best point: explore around them widely and fit
   // the failures found there with their weights, which reach the whole failure region. The
   // exploration's episodes are weighted too (below), as draws of its wider proposal.
-  std::vector<harness::EpisodeRecord> explored;
+  std::vector<harness::EpisodeRecord> explored, walks;
   MixtureProposal explore = proposal;
   int64_t rejections = 0;
   if (int64_t(failures.size()) >= kMinFailuresToFit) {
@@ -372,6 +451,21 @@ EstimateSummary RunEstimate(const lang::CompiledProgram& program,
     if (int64_t(found_there.size()) >= kMinFailuresToFit) {
       FitToFailures(found_there, &explore, proposal);
       PlaceKernels(found_there, explore, proposal);
+      // Walks from the kernels' centres spread over the whole (connected) failure region.
+      std::vector<std::vector<double>> starts(proposal.centres.begin(),
+                                              proposal.centres.begin() +
+                                                  std::min<size_t>(kChains, proposal.centres.size()));
+      MixtureProposal walk_step = proposal;
+      for (double& std : walk_step.std) std = std > 0 ? 2 * std : 0;
+      std::vector<harness::EpisodeRecord> walked;
+      const std::vector<std::vector<double>> states = WalkFailures(
+          program, factory, options, std::move(starts), walk_step,
+          std::llround(kWalkShare * double(options.budget)), next, walked);
+      if (states.size() >= size_t(kMinFailuresToFit)) PlaceKernelsAt(states, proposal);
+      for (harness::EpisodeRecord& r : walked) {
+        if (options.on_record) options.on_record(r);
+        walks.push_back(std::move(r));
+      }
     } else {
       proposal = explore;
     }
@@ -380,6 +474,8 @@ EstimateSummary RunEstimate(const lang::CompiledProgram& program,
   // Nothing to aim at: the program's own law, whose episodes bound the failure rate best.
   if (failures.empty()) proposal.uniform_share = 1;
   summary.adapt_episodes = int64_t(next) - int64_t(explored.size());
+  summary.records.insert(summary.records.end(), std::make_move_iterator(walks.begin()),
+                         std::make_move_iterator(walks.end()));
   summary.proposal = proposal;
   std::vector<harness::EpisodeRecord> sampled;
   while (int64_t(next) < options.budget) {  // in pieces, so that records arrive as they finish

@@ -108,7 +108,7 @@ struct EstimateOptions {
 
 struct EstimateSummary {
   std::vector<harness::EpisodeRecord> records;  // adaptation, then sampling
-  int64_t adapt_episodes = 0;  // unweighted: the search's and the probe's
+  int64_t adapt_episodes = 0;  // unweighted: the search's, the probe's and the walks'
   int generations = 0;          // of the search
   bool scored = false;  // the controller reported scores
   MixtureProposal proposal;  // the sampling phase's
@@ -121,9 +121,10 @@ inline constexpr int64_t kMinEstimateBudget = 200;
 
 /// Adapts a proposal toward failures — the failure search's cross-entropy method on
 /// adapt_share of the budget, a probe of which coordinates failing depends on (the others stay
-/// uniform), an exploration around the failures (15 %) whose weighted failures place the
-/// kernels of the sampling proposal — then runs the rest of the budget from that proposal
-/// mixed with the uniform law. The exploration's and the sampling's records carry "search":
+/// uniform), an exploration around the failures (10 %) whose weighted failures place kernels,
+/// random walks among the failures from them (10 %) whose states place the kernels of the
+/// sampling proposal — then runs the rest of the budget from that proposal mixed with the
+/// uniform law. The exploration's and the sampling's records carry "search":
 /// {"strategy": "importance", "phase", "weight": W, "uniform_share": S, "normalised"}, their
 /// weights those of both phases' deterministic mixture (docs/search.md derives them). A pure
 /// function of (program, controller, options) for any thread count. Throws
