@@ -394,7 +394,7 @@ EstimateSummary RunEstimate(const lang::CompiledProgram& program,
   const int64_t adapt = std::max<int64_t>(60, std::llround(options.adapt_share * options.budget));
   const int64_t piece = 200;  // sampling episodes per batch (records arrive between them)
   MixtureProposal proposal{std::vector<double>(dimension, 0.5),
-                           std::vector<double>(dimension, 1 / std::sqrt(12.0)), 1.0};
+                           std::vector<double>(dimension, 1 / std::sqrt(12.0)), 1.0, {}};
   uint64_t next = 0;
   // Adaptation: the failure search's cross-entropy method (search.cc), whose records lead the
   // record file.
