@@ -14,6 +14,7 @@
 #include <map>
 #include <string>
 
+#include "shapes/glb_header.h"
 #include "shapes/ply_header.h"
 #include "shapes/qhull_session.h"
 
@@ -141,6 +142,8 @@ std::shared_ptr<const MeshShape> LoadMeshShape(std::string_view bytes, const std
   if (extension == "ply") {
     if (auto problem = internal::CheckPlyHeader(bytes)) throw MeshError(*problem);
   }
+  // Binary glTF is recognised by its content, whatever the extension says.
+  if (auto problem = internal::CheckGlbHeader(bytes)) throw MeshError(*problem);
   Assimp::Importer importer;
   // Read first with assimp's own validation only; then check the faces and make every mesh's
   // primitive types agree with them, which assimp's importers do not always do and its
