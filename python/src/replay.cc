@@ -72,7 +72,8 @@ py::list TestScenes(const std::vector<ScenePtr>& scenes, const py::object& contr
     throw py::type_error("controller must be a function, a built-in controller's name or None");
   }
   if (persistent && exec.empty()) throw py::value_error("persistent=True needs exec");
-  const std::string name = py::isinstance<py::str>(controller) ? controller.cast<std::string>() : "";
+  const std::string name =
+      py::isinstance<py::str>(controller) ? controller.cast<std::string>() : "";
   if (int(callable) + int(!name.empty()) + int(!exec.empty()) != 1) {
     throw py::value_error("give one controller: a function, a built-in controller's name, or exec");
   }

@@ -97,7 +97,8 @@ int EstimateFromRecords(const EstimateArgs& args) {
   const auto lines = ReadLines(args.from);
   if (!lines) return kExitScenarioError;
   try {
-    const search::Estimate e = search::CalcEstimate(search::ReadWeightedRecords(*lines, args.from, spec));
+    const search::Estimate e =
+        search::CalcEstimate(search::ReadWeightedRecords(*lines, args.from, spec));
     if (!args.quiet) {
       PrintNote(fmt::format("{} in {}; effective sample size {:.0f}",
                             FormatCount(e.episodes, "weighted episode"), args.from, e.ess));
@@ -143,11 +144,12 @@ int RunEstimateCommand(const EstimateArgs& args) {
     if (!args.quiet) {
       PrintNote(fmt::format(
           "{}: {} adapting the proposal, {} weighted (effective sample size {:.0f}) on {}",
-          FormatCount(args.budget, "episode"), summary.adapt_episodes,
-          summary.estimate.episodes, summary.estimate.ess, FormatCount(summary.threads, "thread")));
+          FormatCount(args.budget, "episode"), summary.adapt_episodes, summary.estimate.episodes,
+          summary.estimate.ess, FormatCount(summary.threads, "thread")));
       if (!summary.scored) {
-        PrintNote("the controller reports no score: the adaptation only tells failures from "
-                  "successes, and finds rare failures more slowly (docs/harness.md, \"score\")");
+        PrintNote(
+            "the controller reports no score: the adaptation only tells failures from "
+            "successes, and finds rare failures more slowly (docs/harness.md, \"score\")");
       }
     }
     return PrintEstimate(summary.estimate, args);
@@ -157,7 +159,8 @@ int RunEstimateCommand(const EstimateArgs& args) {
     return kExitUsage;
   } catch (const search::NothingToSearch& error) {
     progress.Erase();
-    PrintError(std::string(error.what()) + ": every scene is the same, so it fails always or "
+    PrintError(std::string(error.what()) +
+               ": every scene is the same, so it fails always or "
                "never (prs check --coordinates lists what is random)");
     return kExitUsage;
   } catch (const lang::ScenarioError& error) {
@@ -165,10 +168,10 @@ int RunEstimateCommand(const EstimateArgs& args) {
     return ReportScenarioError(error, program->sources);
   } catch (const sampling::BatchCancelled&) {
     progress.Erase();
-    PrintNote(fmt::format("interrupted after {}; no estimate (run it again; the records so far "
-                          "are in {})",
-                          FormatCount(done, "episode"),
-                          records ? records->partial_path() : std::string("(no -o)")));
+    PrintNote(fmt::format(
+        "interrupted after {}; no estimate (run it again; the records so far "
+        "are in {})",
+        FormatCount(done, "episode"), records ? records->partial_path() : std::string("(no -o)")));
     return kExitInterruptedBase + interrupt.signal_number();
   } catch (const harness::ControllerStartError& error) {
     progress.Erase();
@@ -186,9 +189,8 @@ int RunEstimateCommand(const EstimateArgs& args) {
 CommandRunner ConfigureEstimateCommand(CLI::App& command) {
   auto args = std::make_shared<EstimateArgs>();
   AddScenarioOptions(command, args->scenario);
-  command.get_option("FILE")
-      ->required(false)
-      ->description("the .prs scenario (with --from: optional, then the records' program is checked)");
+  command.get_option("FILE")->required(false)->description(
+      "the .prs scenario (with --from: optional, then the records' program is checked)");
   AddControllerOptions(command, args->controller);
   command.add_option("--budget", args->budget, "episodes in all")
       ->type_name("N")

@@ -36,8 +36,10 @@ std::vector<std::string> ListSceneFiles(const std::string& dir) {
 std::string DescribeBadLine(const SavedSceneLine& line, const std::string& what) {
   std::string message = fmt::format("{}:{}: {}", line.path, line.line, what);
   if (line.text.find("\"outcome\"") != std::string::npos) {
-    message += "; this looks like an episode record (prs test -o, prs search -o): run the "
-               "scenes of records again with `prs test PROGRAM.prs --replay " + line.path + "`";
+    message +=
+        "; this looks like an episode record (prs test -o, prs search -o): run the "
+        "scenes of records again with `prs test PROGRAM.prs --replay " +
+        line.path + "`";
   }
   return message;
 }
@@ -136,23 +138,26 @@ std::optional<std::vector<search::ReportRecord>> ReadRecordsToReplay(
   try {
     records = search::ParseReportRecords(*lines, path);
   } catch (const std::runtime_error& error) {
-    PrintError(std::string(error.what()) +
-               (IsScenesFile(path) ? "; a scenes file runs as it is: `prs test " + path + "`" : ""));
+    PrintError(
+        std::string(error.what()) +
+        (IsScenesFile(path) ? "; a scenes file runs as it is: `prs test " + path + "`" : ""));
     return std::nullopt;
   }
   const std::string spec = search::CalcSpecHash(program);
   std::vector<search::ReportRecord> kept;
   for (search::ReportRecord& record : records) {
     if (!record.seed) {
-      PrintError(fmt::format("{}:{}: the record has no \"seed\" (written by an older prs): run it "
-                             "again, or replay its scene file",
-                             path, record.line));
+      PrintError(
+          fmt::format("{}:{}: the record has no \"seed\" (written by an older prs): run it "
+                      "again, or replay its scene file",
+                      path, record.line));
       return std::nullopt;
     }
     if (!record.coordinates.empty() && record.spec != spec) {
-      PrintError(fmt::format("{}:{}: the record was drawn from another program (fingerprint "
-                             "'{}', this one's '{}'): replay it with the program it was run with",
-                             path, record.line, record.spec, spec));
+      PrintError(
+          fmt::format("{}:{}: the record was drawn from another program (fingerprint "
+                      "'{}', this one's '{}'): replay it with the program it was run with",
+                      path, record.line, record.spec, spec));
       return std::nullopt;
     }
     if (!failed_only || record.failed()) kept.push_back(std::move(record));
@@ -164,10 +169,9 @@ std::optional<std::vector<search::ReportRecord>> ReadRecordsToReplay(
   return kept;
 }
 
-harness::ReplaySourceFactory MakeRegeneratedSources(const lang::CompiledProgram& program,
-                                                    const sampling::SampleOptions& options,
-                                                    const std::vector<search::ReportRecord>& records,
-                                                    const std::string& records_path) {
+harness::ReplaySourceFactory MakeRegeneratedSources(
+    const lang::CompiledProgram& program, const sampling::SampleOptions& options,
+    const std::vector<search::ReportRecord>& records, const std::string& records_path) {
   std::map<std::pair<uint64_t, uint64_t>, std::vector<double>> points;
   int dimension = 0;
   for (const search::ReportRecord& record : records) {

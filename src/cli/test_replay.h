@@ -41,9 +41,8 @@ std::optional<std::vector<search::ReportRecord>> ReadRecordsToReplay(
 /// Scene (seed, index) of each record, at its coordinates when it has some (as the first
 /// attempt), each checked against the record's features: a scene that differs throws
 /// std::runtime_error naming the record's line and the first feature that moved.
-harness::ReplaySourceFactory MakeRegeneratedSources(const lang::CompiledProgram& program,
-                                                    const sampling::SampleOptions& options,
-                                                    const std::vector<search::ReportRecord>& records,
-                                                    const std::string& records_path);
+harness::ReplaySourceFactory MakeRegeneratedSources(
+    const lang::CompiledProgram& program, const sampling::SampleOptions& options,
+    const std::vector<search::ReportRecord>& records, const std::string& records_path);
 
 }  // namespace prs::cli

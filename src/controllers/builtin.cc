@@ -106,7 +106,8 @@ std::optional<harness::ControllerFactory> MakeControllerFactory(const Controller
   if (!choice.exec.empty()) {
     const harness::ExecOptions options{choice.exec, choice.timeout_s, cancel};
     return [options] {
-      return std::make_unique<ExecWithSceneCheck>(std::make_unique<harness::ExecController>(options));
+      return std::make_unique<ExecWithSceneCheck>(
+          std::make_unique<harness::ExecController>(options));
     };
   }
   RegisterBuiltInControllers();

@@ -28,7 +28,7 @@ struct ControllerChoice {
   std::string exec;
   double timeout_s = 60;           // --timeout: seconds an --exec episode may take
   bool persistent = false;         // --persistent: one --exec process per worker thread
-  double startup_timeout_s = 120;  // --startup-timeout: seconds a persistent worker may take to start
+  double startup_timeout_s = 120;  // --startup-timeout: seconds a persistent worker may start in
 };
 
 /// The factory of the shell command `choice.exec` when it is not empty (harness::ExecController,

@@ -245,7 +245,8 @@ std::optional<EpisodeResult> ParseJsonAnswer(const std::string& line) {
     if (!score->is_number() || !std::isfinite(score->get<double>())) {
       return EpisodeResult{"bad-answer",
                            "the controller's \"score\" must be a finite number (larger is "
-                           "safer, 0 or less a failure), got " + Shorten(score->dump()),
+                           "safer, 0 or less a failure), got " +
+                               Shorten(score->dump()),
                            {{"answer", Shorten(line)}}};
     }
     result.score = score->get<double>();
@@ -255,8 +256,7 @@ std::optional<EpisodeResult> ParseJsonAnswer(const std::string& line) {
   return result;
 }
 
-std::string TakeSceneIdentity(EpisodeResult& result, uint64_t seed, uint64_t index,
-                              bool required) {
+std::string TakeSceneIdentity(EpisodeResult& result, uint64_t seed, uint64_t index, bool required) {
   nlohmann::json& extra = result.extra;
   const bool has_seed = extra.is_object() && extra.contains("seed");
   const bool has_index = extra.is_object() && extra.contains("index");
@@ -268,9 +268,10 @@ std::string TakeSceneIdentity(EpisodeResult& result, uint64_t seed, uint64_t ind
   const nlohmann::json& said_index = extra["index"];
   if (!said_seed.is_number_unsigned() || !said_index.is_number_unsigned() ||
       said_seed.get<uint64_t>() != seed || said_index.get<uint64_t>() != index) {
-    return fmt::format("the answer is for another scene (seed {}, index {}) than the one sent "
-                       "(seed {}, index {})",
-                       Shorten(said_seed.dump()), Shorten(said_index.dump()), seed, index);
+    return fmt::format(
+        "the answer is for another scene (seed {}, index {}) than the one sent "
+        "(seed {}, index {})",
+        Shorten(said_seed.dump()), Shorten(said_index.dump()), seed, index);
   }
   extra.erase("seed");
   extra.erase("index");

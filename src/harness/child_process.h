@@ -99,7 +99,6 @@ std::optional<EpisodeResult> ParseJsonAnswer(const std::string& line);
 
 /// Checks the "seed" and "index" an answer may carry (EpisodeResult::extra) against the scene
 /// and removes them: "" when they match (or, unless `required`, are absent), else why not.
-std::string TakeSceneIdentity(EpisodeResult& result, uint64_t seed, uint64_t index,
-                              bool required);
+std::string TakeSceneIdentity(EpisodeResult& result, uint64_t seed, uint64_t index, bool required);
 
 }  // namespace prs::harness::internal

@@ -47,8 +47,8 @@ const char* const kProtocolHint =
 enum class Wait { kLine, kEnded, kTimedOut, kCancelled, kTooLong };
 
 Clock::time_point After(double seconds) {
-  return Clock::now() + std::chrono::duration_cast<Clock::duration>(
-                            std::chrono::duration<double>(seconds));
+  return Clock::now() +
+         std::chrono::duration_cast<Clock::duration>(std::chrono::duration<double>(seconds));
 }
 
 bool IsHandshake(const std::string& line) {
@@ -93,8 +93,7 @@ class WorkerProcess {
     const ExitStatus status = Finish();
     EpisodeResult result{status.signaled ? "signal-" + std::to_string(status.code)
                                          : "exit-" + std::to_string(status.code),
-                         DescribeExit(status, "", Who()) + " during the episode" +
-                             LastErrorLine()};
+                         DescribeExit(status, "", Who()) + " during the episode" + LastErrorLine()};
     if (!partial.empty()) result.detail += "; it had written part of a line: " + Shorten(partial);
     return result;
   }
@@ -138,9 +137,10 @@ class WorkerProcess {
       case Wait::kLine:
         if (IsHandshake(line)) return true;
         Kill();
-        throw ControllerStartError(fmt::format("{} began with the line {} instead of its "
-                                               "handshake. {}",
-                                               Who(), Shorten(line), kProtocolHint));
+        throw ControllerStartError(
+            fmt::format("{} began with the line {} instead of its "
+                        "handshake. {}",
+                        Who(), Shorten(line), kProtocolHint));
       case Wait::kTimedOut:
         Kill();
         throw ControllerStartError(fmt::format(
@@ -169,7 +169,8 @@ class WorkerProcess {
     std::optional<EpisodeResult> result = ParseJsonAnswer(line);
     if (!result) {
       Kill();
-      return {"bad-answer", Who() + " answered a line that is not JSON, and was killed",
+      return {"bad-answer",
+              Who() + " answered a line that is not JSON, and was killed",
               {{"answer", Shorten(line)}}};
     }
     if (result->outcome == "bad-answer") {
@@ -179,7 +180,8 @@ class WorkerProcess {
     if (const std::string wrong = TakeSceneIdentity(*result, scene.seed, scene.index, true);
         !wrong.empty()) {
       Kill();
-      return {"bad-answer", fmt::format("{}: {}, and was killed", Who(), wrong),
+      return {"bad-answer",
+              fmt::format("{}: {}, and was killed", Who(), wrong),
               {{"answer", Shorten(line)}}};
     }
     return *std::move(result);
@@ -201,11 +203,13 @@ class WorkerProcess {
     out_ = std::make_unique<Pipe>();
     err_ = std::make_unique<Pipe>();
     try {
-      pid_ = SpawnShell(options_.command,
-                        {.stdin_path = {}, .stdin_fd = sockets[1], .stdout_fd = out_->write_fd,
-                         .stderr_fd = err_->write_fd},
-                        MakeEnvironment({{"PRS_PERSISTENT", "1"},
-                                         {"PRS_WORKER", std::to_string(slot_)}}));
+      pid_ = SpawnShell(
+          options_.command,
+          {.stdin_path = {},
+           .stdin_fd = sockets[1],
+           .stdout_fd = out_->write_fd,
+           .stderr_fd = err_->write_fd},
+          MakeEnvironment({{"PRS_PERSISTENT", "1"}, {"PRS_WORKER", std::to_string(slot_)}}));
     } catch (const std::exception& error) {
       ::close(sockets[0]);
       ::close(sockets[1]);
@@ -255,7 +259,8 @@ class WorkerProcess {
         return Wait::kTimedOut;
       }
       if (!unsent.empty() && !Send(unsent)) unsent = {};  // it closed its stdin: wait for its end
-      const auto next = std::min(deadline, Clock::now() + std::chrono::milliseconds(kPollIntervalMs));
+      const auto next =
+          std::min(deadline, Clock::now() + std::chrono::milliseconds(kPollIntervalMs));
       if (!Drain(next, !unsent.empty())) return Wait::kEnded;
     }
   }
@@ -279,7 +284,8 @@ class WorkerProcess {
     std::array<pollfd, 4> fds = {pollfd{out_->read_fd, POLLIN, 0}, pollfd{err_->read_fd, POLLIN, 0},
                                  pollfd{process_ended_ ? -1 : process_->fd(), POLLIN, 0},
                                  pollfd{writing ? stdin_fd_ : -1, POLLOUT, 0}};
-    const auto wait_ms = std::chrono::duration_cast<std::chrono::milliseconds>(until - Clock::now());
+    const auto wait_ms =
+        std::chrono::duration_cast<std::chrono::milliseconds>(until - Clock::now());
     const int timeout_ms = int(std::clamp<int64_t>(wait_ms.count(), 0, kPollIntervalMs));
     if (::poll(fds.data(), fds.size(), timeout_ms) < 0 && errno != EINTR) return false;
     if (fds[0].revents != 0 && !ReadInto(out_->read_fd, out_buffer_, kMaxLineBytes)) {
@@ -317,8 +323,8 @@ class WorkerProcess {
   std::unique_ptr<Pipe> out_, err_;
   std::unique_ptr<ProcessFd> process_;
   bool process_ended_ = false;  // its pidfd has fired
-  std::string out_buffer_;  // stdout not yet taken as lines
-  std::string err_tail_;    // the end of stderr, for messages
+  std::string out_buffer_;      // stdout not yet taken as lines
+  std::string err_tail_;        // the end of stderr, for messages
 };
 
 // The workers of one factory: idle ones wait here between runs (a search's generations).

@@ -11,9 +11,9 @@
 namespace prs::harness {
 
 struct PersistentOptions {
-  std::string command;            // run as `/bin/sh -c COMMAND`
-  double timeout_s = 60;          // per episode, from the scene sent to the answer read
-  double startup_timeout_s = 120; // from the start to the handshake line
+  std::string command;             // run as `/bin/sh -c COMMAND`
+  double timeout_s = 60;           // per episode, from the scene sent to the answer read
+  double startup_timeout_s = 120;  // from the start to the handshake line
   /// Polled between reads; once true the running episode's worker is killed and the episode
   /// ends as "cancelled".
   const std::atomic<bool>* cancel = nullptr;

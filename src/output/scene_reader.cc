@@ -34,7 +34,8 @@ const json& Field(const json& object, const char* key, const std::string& where)
 template <int N>
 Eigen::Matrix<double, N, 1> ReadNumbers(const json& array, const char* key,
                                         const std::string& where) {
-  if (!array.is_array() || array.size() != N) Fail(where, fmt::format("\"{}\" is not {} numbers", key, N));
+  if (!array.is_array() || array.size() != N)
+    Fail(where, fmt::format("\"{}\" is not {} numbers", key, N));
   Eigen::Matrix<double, N, 1> numbers;
   for (int i = 0; i < N; ++i) {
     if (!array[i].is_number()) Fail(where, fmt::format("\"{}\" is not {} numbers", key, N));
@@ -44,7 +45,8 @@ Eigen::Matrix<double, N, 1> ReadNumbers(const json& array, const char* key,
 }
 
 lang::Value ToValue(const json& j, int depth, const std::string& where) {
-  if (depth > kMaxValueDepth) Fail(where, fmt::format("a value nests more than {} levels", kMaxValueDepth));
+  if (depth > kMaxValueDepth)
+    Fail(where, fmt::format("a value nests more than {} levels", kMaxValueDepth));
   if (j.is_string()) return lang::MakeString(j.get<std::string>());
   if (j.is_boolean()) return lang::Value(j.get<bool>());
   if (j.is_number()) return lang::Value(j.get<double>());
@@ -67,8 +69,9 @@ std::optional<lang::Value> ReadShape(const json& shape, const std::string& where
     if (auto kind = shapes::ParsePrimitive(shape["primitive"].get<std::string>())) {
       return lang::Value(lang::PrimitiveRef{*kind});
     }
-    Fail(where, "its shape " + shape.dump() + " is not a built-in shape (\"cylinder\", \"sphere\", "
-                "\"capsule\")");
+    Fail(where, "its shape " + shape.dump() +
+                    " is not a built-in shape (\"cylinder\", \"sphere\", "
+                    "\"capsule\")");
   }
   const bool is_mesh = shape.contains("mesh") && shape["mesh"].is_string() &&
                        shape.contains("path") && shape["path"].is_string() &&
@@ -79,8 +82,9 @@ std::optional<lang::Value> ReadShape(const json& shape, const std::string& where
   const std::string path = shape["path"].get<std::string>();
   auto mesh = shapes::LoadRecordedMesh(shape["mesh"].get<std::string>(), path, problem);
   if (!mesh) {
-    if (warnings) warnings->push_back(fmt::format("{}: its mesh file '{}' {}; it is a box here",
-                                                  where, path, problem));
+    if (warnings)
+      warnings->push_back(
+          fmt::format("{}: its mesh file '{}' {}; it is a box here", where, path, problem));
     return std::nullopt;
   }
   return lang::Value(lang::MeshRef{std::move(mesh), shape["scale"].get<double>()});
@@ -195,7 +199,8 @@ void SceneReader::SetShape(lang::SceneObject& o) {
     o.mesh_scale = mesh->scale;
   } else if (const auto* primitive = std::get_if<lang::PrimitiveRef>(&shape->data)) {
     o.primitive = primitive->kind;
-    if (o.dimensions.minCoeff() > 0) o.mesh = shapes::MakePrimitiveShape(primitive->kind, o.dimensions);
+    if (o.dimensions.minCoeff() > 0)
+      o.mesh = shapes::MakePrimitiveShape(primitive->kind, o.dimensions);
   }
 }
 

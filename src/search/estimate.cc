@@ -78,12 +78,12 @@ void PlaceKernels(const std::vector<const harness::EpisodeRecord*>& failures,
   proposal.centres.clear();
   for (size_t i = 0; i < k; ++i) {
     const double at = (double(i) + 0.5) / double(k) * total;
-    const size_t pick = size_t(std::lower_bound(cumulative.begin(), cumulative.end(), at) -
-                               cumulative.begin());
+    const size_t pick =
+        size_t(std::lower_bound(cumulative.begin(), cumulative.end(), at) - cumulative.begin());
     proposal.centres.push_back(failures[std::min(pick, failures.size() - 1)]->coordinates);
   }
-  const auto relevant = std::count_if(proposal.std.begin(), proposal.std.end(),
-                                      [](double s) { return s > 0; });
+  const auto relevant =
+      std::count_if(proposal.std.begin(), proposal.std.end(), [](double s) { return s > 0; });
   const double scott = std::pow(double(k), -1.0 / double(relevant + 4));
   for (double& std : proposal.std) {
     if (std > 0) std = std::max(std * scott, kMinProposalStd);
@@ -104,8 +104,8 @@ void PlaceKernelsAt(const std::vector<std::vector<double>>& points, MixturePropo
   const size_t k = std::min<size_t>(kKernels, points.size());
   proposal.centres.clear();
   for (size_t i = 0; i < k; ++i) proposal.centres.push_back(points[i * points.size() / k]);
-  const auto relevant = std::count_if(proposal.std.begin(), proposal.std.end(),
-                                      [](double s) { return s > 0; });
+  const auto relevant =
+      std::count_if(proposal.std.begin(), proposal.std.end(), [](double s) { return s > 0; });
   const double scott = std::pow(double(k), -1.0 / double(relevant + 4));
   for (double& std : proposal.std) {
     if (std > 0) std = std::max(std * scott, kMinProposalStd);
@@ -154,8 +154,8 @@ std::vector<harness::EpisodeRecord> ProbeCoordinates(
     uint64_t start, MixtureProposal& proposal) {
   const int d = proposal.dimension();
   // At most a tenth of the budget; too few failures per coordinate tell nothing.
-  const size_t m = std::min<size_t>({failures.size(), kProbeFailures,
-                                     size_t(options.budget / 10 / d)});
+  const size_t m =
+      std::min<size_t>({failures.size(), kProbeFailures, size_t(options.budget / 10 / d)});
   if (m < kProbeFailures / 2) return {};
   std::vector<std::vector<double>> points;
   geometry::Rng rng(options.run.seed ^ 0x5EEDFACEULL, start);
@@ -293,8 +293,8 @@ Estimate CalcEstimate(const std::vector<WeightedOutcome>& records) {
   std::map<std::string, std::pair<double, int64_t>> failed;  // outcome -> (weight, episodes)
   for (const WeightedOutcome& r : records) {
     if (!(r.weight > 0) || !std::isfinite(r.weight)) {
-      throw std::invalid_argument(fmt::format("a record's weight is {}, not a positive number",
-                                              r.weight));
+      throw std::invalid_argument(
+          fmt::format("a record's weight is {}, not a positive number", r.weight));
     }
     total += r.weight;
     squares += r.weight * r.weight;
@@ -304,10 +304,9 @@ Estimate CalcEstimate(const std::vector<WeightedOutcome>& records) {
     ++failed[r.outcome].second;
   }
   estimate.ess = total * total / squares;
-  estimate.reliable =
-      estimate.ess >= kMinEss && estimate.ess >= 0.05 * double(estimate.episodes);
-  const bool normalised = std::any_of(records.begin(), records.end(),
-                                      [](const auto& r) { return r.normalised; });
+  estimate.reliable = estimate.ess >= kMinEss && estimate.ess >= 0.05 * double(estimate.episodes);
+  const bool normalised =
+      std::any_of(records.begin(), records.end(), [](const auto& r) { return r.normalised; });
   const double n = double(records.size());
   for (const auto& [outcome, weight_and_count] : failed) {
     // Self-normalised, sum w 1F / sum w, with the delta method's variance; or, when the weights'
@@ -362,8 +361,9 @@ std::vector<WeightedOutcome> ReadWeightedRecords(const std::vector<std::string>&
       r.uniform_share = search.value("uniform_share", 0.0);
       r.normalised = search.value("normalised", true);
       if (!(r.weight > 0) || !(r.uniform_share > 0)) {
-        throw std::runtime_error(where + ": an importance-sampling record without a positive "
-                                         "\"weight\" and \"uniform_share\"");
+        throw std::runtime_error(where +
+                                 ": an importance-sampling record without a positive "
+                                 "\"weight\" and \"uniform_share\"");
       }
       weighted.push_back(r);
     } else if (search.is_object()) {
@@ -375,8 +375,9 @@ std::vector<WeightedOutcome> ReadWeightedRecords(const std::vector<std::string>&
   if (!weighted.empty()) return weighted;
   if (!plain.empty()) return plain;
   throw std::runtime_error(
-      searched ? path + " holds only records of a search, whose scenes are not drawn from the "
-                        "program's law: estimate with `prs estimate`, whose records carry weights"
+      searched ? path +
+                     " holds only records of a search, whose scenes are not drawn from the "
+                     "program's law: estimate with `prs estimate`, whose records carry weights"
                : path + " holds no record");
 }
 
@@ -384,9 +385,10 @@ EstimateSummary RunEstimate(const lang::CompiledProgram& program,
                             const harness::ControllerFactory& factory,
                             const EstimateOptions& options) {
   if (options.budget < kMinEstimateBudget) {
-    throw std::invalid_argument(fmt::format("a budget of {} episodes is too small to adapt a "
-                                            "proposal and then sample: give at least {}",
-                                            options.budget, kMinEstimateBudget));
+    throw std::invalid_argument(
+        fmt::format("a budget of {} episodes is too small to adapt a "
+                    "proposal and then sample: give at least {}",
+                    options.budget, kMinEstimateBudget));
   }
   const int dimension = int(sampling::DescribeCoordinates(program, options.run.sample).size());
   if (dimension == 0) throw NothingToSearch("the program draws nothing at random");
@@ -394,7 +396,9 @@ EstimateSummary RunEstimate(const lang::CompiledProgram& program,
   const int64_t adapt = std::max<int64_t>(60, std::llround(options.adapt_share * options.budget));
   const int64_t piece = 200;  // sampling episodes per batch (records arrive between them)
   MixtureProposal proposal{std::vector<double>(dimension, 0.5),
-                           std::vector<double>(dimension, 1 / std::sqrt(12.0)), 1.0, {}};
+                           std::vector<double>(dimension, 1 / std::sqrt(12.0)),
+                           1.0,
+                           {}};
   uint64_t next = 0;
   // Adaptation: the failure search's cross-entropy method (search.cc), whose records lead the
   // record file.
@@ -441,8 +445,8 @@ EstimateSummary RunEstimate(const lang::CompiledProgram& program,
   if (int64_t(failures.size()) >= kMinFailuresToFit) {
     for (double& std : explore.std) std = std > 0 ? std::max(4 * std, 0.1) : 0;
     const int64_t count = std::llround(kExploreShare * double(options.budget));
-    explored = RunAt(program, factory, options, explore, next, count, &summary.threads,
-                     &rejections);
+    explored =
+        RunAt(program, factory, options, explore, next, count, &summary.threads, &rejections);
     next += uint64_t(count);
     std::vector<const harness::EpisodeRecord*> found_there;
     for (const harness::EpisodeRecord& r : explored) {
@@ -452,15 +456,15 @@ EstimateSummary RunEstimate(const lang::CompiledProgram& program,
       FitToFailures(found_there, &explore, proposal);
       PlaceKernels(found_there, explore, proposal);
       // Walks from the kernels' centres spread over the whole (connected) failure region.
-      std::vector<std::vector<double>> starts(proposal.centres.begin(),
-                                              proposal.centres.begin() +
-                                                  std::min<size_t>(kChains, proposal.centres.size()));
+      std::vector<std::vector<double>> starts(
+          proposal.centres.begin(),
+          proposal.centres.begin() + std::min<size_t>(kChains, proposal.centres.size()));
       MixtureProposal walk_step = proposal;
       for (double& std : walk_step.std) std = std > 0 ? 2 * std : 0;
       std::vector<harness::EpisodeRecord> walked;
-      const std::vector<std::vector<double>> states = WalkFailures(
-          program, factory, options, std::move(starts), walk_step,
-          std::llround(kWalkShare * double(options.budget)), next, walked);
+      const std::vector<std::vector<double>> states =
+          WalkFailures(program, factory, options, std::move(starts), walk_step,
+                       std::llround(kWalkShare * double(options.budget)), next, walked);
       if (states.size() >= size_t(kMinFailuresToFit)) PlaceKernelsAt(states, proposal);
       for (harness::EpisodeRecord& r : walked) {
         if (options.on_record) options.on_record(r);

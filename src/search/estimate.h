@@ -50,8 +50,8 @@ class MixturePoints : public sampling::AttemptPoints {
 /// One failure outcome's probability under the program's law.
 struct OutcomeEstimate {
   std::string outcome;
-  int64_t episodes = 0;  // weighted episodes that ended in it
-  double p = 0;          // the self-normalised estimate
+  int64_t episodes = 0;            // weighted episodes that ended in it
+  double p = 0;                    // the self-normalised estimate
   double ci_low = 0, ci_high = 0;  // 95 % (delta method); [0, bound] when none failed so
   /// The i.i.d. episodes whose binomial estimate would be as precise: p (1 - p) / variance.
   double iid_episodes = 0;
@@ -76,8 +76,8 @@ inline constexpr double kMinEss = 30;
 /// A record as the estimate reads it.
 struct WeightedOutcome {
   std::string outcome;
-  double weight = 1;          // 1 / proposal density (1 for i.i.d. records)
-  double uniform_share = 1;   // of the proposal it was drawn from (1: i.i.d.)
+  double weight = 1;         // 1 / proposal density (1 for i.i.d. records)
+  double uniform_share = 1;  // of the proposal it was drawn from (1: i.i.d.)
   /// True when the accepted set may be smaller than the cube (the run saw rejections): then
   /// the estimate is self-normalised, sum w 1F / sum w; else the plain mean of w 1F.
   bool normalised = true;
@@ -96,9 +96,9 @@ std::vector<WeightedOutcome> ReadWeightedRecords(const std::vector<std::string>&
                                                  const std::string& spec_hash);
 
 struct EstimateOptions {
-  int64_t budget = 0;         // episodes in all
-  double adapt_share = 0.3;   // of the budget spent adapting the proposal
-  double uniform_share = 0.2; // the mixture's uniform share in the sampling phase
+  int64_t budget = 0;          // episodes in all
+  double adapt_share = 0.3;    // of the budget spent adapting the proposal
+  double uniform_share = 0.2;  // the mixture's uniform share in the sampling phase
   /// Seed, threads, sampling options, cancel, save_failures_dir (start, count, on_record and
   /// sample.points are set here).
   harness::RunOptions run;
@@ -109,9 +109,9 @@ struct EstimateOptions {
 struct EstimateSummary {
   std::vector<harness::EpisodeRecord> records;  // adaptation, then sampling
   int64_t adapt_episodes = 0;  // unweighted: the search's, the probe's and the walks'
-  int generations = 0;          // of the search
-  bool scored = false;  // the controller reported scores
-  MixtureProposal proposal;  // the sampling phase's
+  int generations = 0;         // of the search
+  bool scored = false;         // the controller reported scores
+  MixtureProposal proposal;    // the sampling phase's
   Estimate estimate;
   int threads = 1;
 };

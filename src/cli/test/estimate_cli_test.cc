@@ -1,9 +1,8 @@
 // End-to-end tests of `prs estimate`: the table and --json of a planted failure, the same
 // estimate again from the record file alone (--from), the bound when nothing fails, and bad
 // requests (a budget too small, search records, another program's records).
-#include <nlohmann/json.hpp>
-
 #include <cmath>
+#include <nlohmann/json.hpp>
 
 #include "cli/test/json_lines.h"
 #include "cli/test/prs_test_fixture.h"
@@ -45,8 +44,8 @@ TEST_F(PrsTest, EstimatePrintsAnIntervalAndTheRecordsGiveItAgain) {
 }
 
 TEST_F(PrsTest, EstimateWithoutFailuresGivesABoundAndRefusesBadRequests) {
-  Result r = Run({"estimate", Example("table_cube.prs"), "--exec", "true", "--budget", "200",
-                  "--json"});
+  Result r =
+      Run({"estimate", Example("table_cube.prs"), "--exec", "true", "--budget", "200", "--json"});
   ASSERT_EQ(r.exit_code, 0) << r.err;
   const json out = json::parse(r.out);
   EXPECT_TRUE(out["estimates"].empty());

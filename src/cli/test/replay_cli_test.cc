@@ -3,10 +3,9 @@
 // case study's MuJoCo controller included); --replay regenerates an earlier run's scenes and
 // refuses other programs and options; --persistent gives the records of one process per
 // episode; bad files and workers exit with a located message and run nothing.
-#include <nlohmann/json.hpp>
-
 #include <filesystem>
 #include <fstream>
+#include <nlohmann/json.hpp>
 
 #include "cli/test/json_lines.h"
 #include "cli/test/prs_test_fixture.h"
@@ -27,9 +26,9 @@ std::vector<json> Comparable(std::vector<json> records) {
 
 TEST_F(PrsTest, SavedFailuresReplayToTheSameOutcomesInTheCaseStudy) {
   const std::string failures = (dir_ / "failures").string();
-  Result r = Run({"test", Example("table_cube.prs"), "--controller", "table-cube", "-n", "10",
-                  "-s", "1", "--threads", "2", "--save-failures", failures, "-o",
-                  (dir_ / "run.jsonl").string()});
+  Result r =
+      Run({"test", Example("table_cube.prs"), "--controller", "table-cube", "-n", "10", "-s", "1",
+           "--threads", "2", "--save-failures", failures, "-o", (dir_ / "run.jsonl").string()});
   ASSERT_EQ(r.exit_code, 0) << r.err;
   std::vector<json> failed;
   for (const json& record : ReadRecords(dir_ / "run.jsonl")) {
@@ -110,7 +109,8 @@ TEST_F(PrsTest, ABadSceneLineIsLocatedAndNothingRuns) {
   EXPECT_EQ(r.exit_code, 1);
   EXPECT_NE(r.err.find("broken.jsonl:4: not valid JSON"), std::string::npos) << r.err;
   EXPECT_FALSE(std::filesystem::exists(marker)) << "nothing runs before every line is read";
-  const Result empty = Run({"test", (dir_ / "nothing").string() + "/", "--controller", "demo-reach"});
+  const Result empty =
+      Run({"test", (dir_ / "nothing").string() + "/", "--controller", "demo-reach"});
   EXPECT_NE(empty.exit_code, 0);
 }
 
@@ -130,9 +130,12 @@ TEST_F(PrsTest, PersistentWorkersGiveTheRecordsOfOneProcessPerEpisode) {
   const std::string command = "sh '" + Write("controller.sh", kShellController) + "'";
   std::vector<std::vector<json>> runs;
   for (const auto& [persistent, threads] : {std::pair{false, "2"}, {true, "2"}, {true, "1"}}) {
-    std::vector<std::string> args = {"test", Example("table_cube.prs"), "--exec", command, "-n",
-                                     "16", "-s", "7", "--threads", threads, "-o",
-                                     (dir_ / "r.jsonl").string()};
+    std::vector<std::string> args = {"test",      Example("table_cube.prs"),
+                                     "--exec",    command,
+                                     "-n",        "16",
+                                     "-s",        "7",
+                                     "--threads", threads,
+                                     "-o",        (dir_ / "r.jsonl").string()};
     if (persistent) args.push_back("--persistent");
     const Result r = Run(args);
     ASSERT_EQ(r.exit_code, 0) << r.err;
@@ -147,9 +150,9 @@ TEST_F(PrsTest, PersistentWorkersServeEveryGenerationOfASearchAndACampaignShard)
   const std::string log = (dir_ / "starts.txt").string();
   const std::string command =
       "LOG='" + log + "' exec sh '" + Write("controller.sh", kShellController) + "'";
-  Result r = Run({"search", Example("table_cube.prs"), "--exec", command, "--persistent",
-                  "--budget", "60", "--batch", "20", "--threads", "2", "-o",
-                  (dir_ / "search.jsonl").string()});
+  Result r =
+      Run({"search", Example("table_cube.prs"), "--exec", command, "--persistent", "--budget", "60",
+           "--batch", "20", "--threads", "2", "-o", (dir_ / "search.jsonl").string()});
   ASSERT_EQ(r.exit_code, 0) << r.err;
   EXPECT_EQ(ReadRecords(dir_ / "search.jsonl").size(), 60u);
   std::vector<json> starts;
@@ -191,8 +194,8 @@ TEST_F(PrsTest, APersistentWorkerThatCannotStartStopsTheRun) {
             std::string::npos)
       << r.err;
   EXPECT_NE(r.err.find("docs/harness.md"), std::string::npos) << r.err;
-  r = Run({"test", Example("table_cube.prs"), "-n", "4", "--persistent", "--startup-timeout",
-           "0.2", "--exec", "sleep 5"});
+  r = Run({"test", Example("table_cube.prs"), "-n", "4", "--persistent", "--startup-timeout", "0.2",
+           "--exec", "sleep 5"});
   EXPECT_EQ(r.exit_code, 1);
   EXPECT_NE(r.err.find("sent no handshake within 0.2 s"), std::string::npos) << r.err;
 }

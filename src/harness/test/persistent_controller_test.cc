@@ -60,7 +60,8 @@ class PersistentControllerTest : public testing::Test {
                  on_start + (handshake ? "\necho '{\"ready\": true}'" : ""));
     text.replace(text.find("ON_SCENE"), 8, on_scene.empty() ? ":" : on_scene);
     std::ofstream(dir_ / "worker.sh") << text;
-    return "LOG='" + (dir_ / "log.txt").string() + "' exec sh '" + (dir_ / "worker.sh").string() + "'";
+    return "LOG='" + (dir_ / "log.txt").string() + "' exec sh '" + (dir_ / "worker.sh").string() +
+           "'";
   }
 
   ControllerFactory Factory(const std::string& command, double timeout_s = 10,
@@ -106,8 +107,8 @@ TEST_F(PersistentControllerTest, OneProcessAnswersEverySceneAndStopsWhenItsInput
     for (uint64_t i = 0; i < 5; ++i) {
       const EpisodeResult result = Run(*controller, i);
       EXPECT_EQ(result.outcome, "success") << result.detail;
-      EXPECT_TRUE(result.extra.empty()) << "seed and index are the scene's, not extra: "
-                                        << result.extra.dump();
+      EXPECT_TRUE(result.extra.empty())
+          << "seed and index are the scene's, not extra: " << result.extra.dump();
     }
   }
   ASSERT_EQ(Log("start").size(), 1u) << "started once for five scenes";
@@ -117,9 +118,8 @@ TEST_F(PersistentControllerTest, OneProcessAnswersEverySceneAndStopsWhenItsInput
 }
 
 TEST_F(PersistentControllerTest, WorkersAreNamedAndKeptAcrossControllersOfOneFactory) {
-  const ControllerFactory factory =
-      Factory(Worker("echo \"env $PRS_PERSISTENT $PRS_WORKER ${PRS_SCENE_FILE:-none}\" >> \"$LOG\"",
-                     ""));
+  const ControllerFactory factory = Factory(
+      Worker("echo \"env $PRS_PERSISTENT $PRS_WORKER ${PRS_SCENE_FILE:-none}\" >> \"$LOG\"", ""));
   {
     std::unique_ptr<Controller> a = factory();
     std::unique_ptr<Controller> b = factory();
@@ -185,12 +185,13 @@ TEST_F(PersistentControllerTest, AHangingWorkerTimesOutAndIsKilledWithItsChildre
 }
 
 TEST_F(PersistentControllerTest, GarbageOtherScenesAndNamelessAnswersAreBadAnswersAndRestart) {
-  const ControllerFactory factory = Factory(Worker(
-      "",
-      "case $index in 1) echo '{not json'; continue;; "
-      "2) echo '{\"outcome\":\"success\"}'; continue;; "
-      "3) echo \"{\\\"outcome\\\":\\\"success\\\",\\\"seed\\\":$seed,\\\"index\\\":9}\"; continue;; "
-      "4) echo '{\"outcome\":\"Not A Name\"}'; continue;; esac"));
+  const ControllerFactory factory = Factory(
+      Worker("",
+             "case $index in 1) echo '{not json'; continue;; "
+             "2) echo '{\"outcome\":\"success\"}'; continue;; "
+             "3) echo \"{\\\"outcome\\\":\\\"success\\\",\\\"seed\\\":$seed,\\\"index\\\":9}\"; "
+             "continue;; "
+             "4) echo '{\"outcome\":\"Not A Name\"}'; continue;; esac"));
   std::unique_ptr<Controller> controller = factory();
   EXPECT_EQ(Run(*controller, 0).outcome, "success");
   const EpisodeResult garbage = Run(*controller, 1);
@@ -209,9 +210,10 @@ TEST_F(PersistentControllerTest, GarbageOtherScenesAndNamelessAnswersAreBadAnswe
 }
 
 TEST_F(PersistentControllerTest, HalfALineThenAnExitAndAFloodAreRecorded) {
-  const ControllerFactory factory = Factory(Worker(
-      "", "case $index in 1) printf '{\"outcome\":\"succ'; exit 4;; "
-          "2) head -c 20000000 /dev/zero | tr '\\0' '{'; sleep 30;; esac"));
+  const ControllerFactory factory =
+      Factory(Worker("",
+                     "case $index in 1) printf '{\"outcome\":\"succ'; exit 4;; "
+                     "2) head -c 20000000 /dev/zero | tr '\\0' '{'; sleep 30;; esac"));
   std::unique_ptr<Controller> controller = factory();
   const EpisodeResult half = Run(*controller, 1);
   EXPECT_EQ(half.outcome, "exit-4");
@@ -299,14 +301,20 @@ TEST_F(PersistentControllerTest, RecordsEqualOneProcessPerEpisodeForAnyThreadCou
   // the first time (a flaky simulator), which costs that episode alone.
   const std::string once = (dir_ / "crashed-once").string();
   const std::string command = Worker(
-      "",
-      "[ \"$index\" = 5 ] && [ -n \"$PRS_PERSISTENT\" ] && [ ! -e '" + once + "' ] && "
-      "{ touch '" + once + "'; kill -9 $$; }\n"
-      "  [ $((index % 2)) = 1 ] && echo \"{\\\"outcome\\\":\\\"no-path\\\",\\\"score\\\":$index,"
-      "\\\"seed\\\":$seed,\\\"index\\\":$index}\" && continue\n"
-      "  [ -z \"$PRS_PERSISTENT\" ] && { echo '{\"outcome\":\"success\"}'; exit 0; }");
-  const std::vector<EpisodeRecord> baseline =
-      RunTableCube([&] { return std::make_unique<ExecController>(ExecOptions{command, 10}); }, 2);
+      "", "[ \"$index\" = 5 ] && [ -n \"$PRS_PERSISTENT\" ] && [ ! -e '" + once +
+              "' ] && "
+              "{ touch '" +
+              once +
+              "'; kill -9 $$; }\n"
+              "  [ $((index % 2)) = 1 ] && echo "
+              "\"{\\\"outcome\\\":\\\"no-path\\\",\\\"score\\\":$index,"
+              "\\\"seed\\\":$seed,\\\"index\\\":$index}\" && continue\n"
+              "  [ -z \"$PRS_PERSISTENT\" ] && { echo '{\"outcome\":\"success\"}'; exit 0; }");
+  const std::vector<EpisodeRecord> baseline = RunTableCube(
+      [&] {
+        return std::make_unique<ExecController>(ExecOptions{command, 10});
+      },
+      2);
   ASSERT_EQ(baseline.size(), 12u);
   for (const int threads : {1, 2}) {
     fs::remove(once);

@@ -1,6 +1,6 @@
 // Reading scene lines back: every example's scenes, written, read and written again, give the
-// same line (to the last digit of orientations); the objects read carry their classes, poses, sizes, properties and shapes; a bad
-// line is refused with what is wrong.
+// same line (to the last digit of orientations); the objects read carry their classes, poses,
+// sizes, properties and shapes; a bad line is refused with what is wrong.
 #include "output/scene_reader.h"
 
 #include <gtest/gtest.h>

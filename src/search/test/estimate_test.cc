@@ -42,8 +42,9 @@ TEST(MixtureProposalTest, ItsPointsFollowItsDensity) {
 TEST(CalcEstimateTest, WeightedSharesIntervalsAndTheBoundWithoutFailures) {
   std::vector<WeightedOutcome> records;
   for (int copy = 0; copy < 10; ++copy) {
-    records.insert(records.end(), {{"success", 1, 0.2}, {"no-path", 1, 0.2},
-                                   {"success", 2, 0.2}, {"no-path", 4, 0.2}});
+    records.insert(
+        records.end(),
+        {{"success", 1, 0.2}, {"no-path", 1, 0.2}, {"success", 2, 0.2}, {"no-path", 4, 0.2}});
   }
   const Estimate e = CalcEstimate(records);
   ASSERT_EQ(e.outcomes.size(), 1u);
