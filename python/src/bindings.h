@@ -98,6 +98,8 @@ py::list RunPythonSearch(const ProgramPtr& program, const sampling::SampleOption
 /// dict with "outcome" and optionally "detail", "score" and anything else (the extra);
 /// "bad-answer" for anything else. Needs the GIL.
 harness::EpisodeResult ConvertControllerAnswer(const py::object& answer);
+/// search.cc: records as dicts, as `prs test -o` writes them (needs the GIL).
+py::list ToPythonRecords(const std::vector<harness::EpisodeRecord>& records);
 /// replay.cc: read_scene_lines (scenes files as Scenes) and test_scenes (a controller on them).
 void BindReplay(py::module_& m);
 /// search.cc: prs estimate with a Python callable (on this thread) or a built-in controller's

@@ -105,20 +105,13 @@ py::list TestScenes(const std::vector<ScenePtr>& scenes, const py::object& contr
   harness::RunOptions options;
   options.threads = threads;
   harness::RunSummary summary;
-  try {
+  {
     py::gil_scoped_release no_gil;
+    // A worker that cannot start (ControllerStartError) reaches Python as RuntimeError.
     summary = harness::ReplayEpisodes(int64_t(scenes.size()), sources, factory, options);
-    py::gil_scoped_acquire gil;
-    factory = nullptr;  // a Python function is released with the GIL held
-  } catch (const harness::ControllerStartError& error) {
-    throw std::runtime_error(error.what());
   }
-  const py::object loads = py::module_::import("json").attr("loads");
-  py::list records;
-  for (const harness::EpisodeRecord& record : summary.records) {
-    records.append(loads(harness::FormatRecordJson(record)));
-  }
-  return records;
+  factory = nullptr;  // a Python function is released with the GIL held
+  return ToPythonRecords(summary.records);
 }
 
 }  // namespace

@@ -46,7 +46,32 @@ class PythonController : public harness::Controller {
   std::atomic<bool>* cancel_;
 };
 
+// Called in a catch block: Ctrl-C (the run was cancelled) as KeyboardInterrupt, nothing to
+// search as ValueError, a scenario error as ScenarioError; anything else as it is.
+[[noreturn]] void RaiseSearchError(const lang::CompiledProgram& program) {
+  try {
+    throw;
+  } catch (const sampling::BatchCancelled&) {
+    PyErr_SetNone(PyExc_KeyboardInterrupt);
+    throw py::error_already_set();
+  } catch (const search::NothingToSearch& error) {
+    throw py::value_error(error.what());
+  } catch (const lang::ScenarioError& error) {
+    RaiseScenarioError(error.diagnostic(), program.sources,
+                       lang::RenderDiagnostic(error.diagnostic(), program.sources));
+  }
+}
+
 }  // namespace
+
+py::list ToPythonRecords(const std::vector<harness::EpisodeRecord>& records) {
+  const py::object loads = py::module_::import("json").attr("loads");
+  py::list out;
+  for (const harness::EpisodeRecord& record : records) {
+    out.append(loads(harness::FormatRecordJson(record)));
+  }
+  return out;
+}
 
 harness::EpisodeResult ConvertControllerAnswer(const py::object& answer) {
   harness::EpisodeResult result;
@@ -146,21 +171,10 @@ py::list RunPythonSearch(const ProgramPtr& program, const sampling::SampleOption
     summary = search::RunSearch(
         *program, [&] { return std::make_unique<PythonController>(program, controller, &cancel); },
         options);
-  } catch (const sampling::BatchCancelled&) {
-    PyErr_SetNone(PyExc_KeyboardInterrupt);
-    throw py::error_already_set();
-  } catch (const search::NothingToSearch& error) {
-    throw py::value_error(error.what());
-  } catch (const lang::ScenarioError& error) {
-    RaiseScenarioError(error.diagnostic(), program->sources,
-                       lang::RenderDiagnostic(error.diagnostic(), program->sources));
+  } catch (...) {
+    RaiseSearchError(*program);
   }
-  const py::object loads = py::module_::import("json").attr("loads");
-  py::list records;
-  for (const harness::EpisodeRecord& record : summary.records) {
-    records.append(loads(harness::FormatRecordJson(record)));
-  }
-  return records;
+  return ToPythonRecords(summary.records);
 }
 
 py::dict RunPythonEstimate(const ProgramPtr& program, const sampling::SampleOptions& sample,
@@ -199,14 +213,8 @@ py::dict RunPythonEstimate(const ProgramPtr& program, const sampling::SampleOpti
           [&] { return std::make_unique<PythonController>(program, function, &cancel); },
           options);
     }
-  } catch (const sampling::BatchCancelled&) {
-    PyErr_SetNone(PyExc_KeyboardInterrupt);
-    throw py::error_already_set();
-  } catch (const search::NothingToSearch& error) {
-    throw py::value_error(error.what());
-  } catch (const lang::ScenarioError& error) {
-    RaiseScenarioError(error.diagnostic(), program->sources,
-                       lang::RenderDiagnostic(error.diagnostic(), program->sources));
+  } catch (...) {
+    RaiseSearchError(*program);
   }
   const search::Estimate& e = summary.estimate;
   py::dict out;
@@ -225,12 +233,7 @@ py::dict RunPythonEstimate(const ProgramPtr& program, const sampling::SampleOpti
   }
   out["estimates"] = estimates;
   if (e.outcomes.empty()) out["upper_bound_95"] = e.upper_bound;
-  const py::object loads = py::module_::import("json").attr("loads");
-  py::list records;
-  for (const harness::EpisodeRecord& record : summary.records) {
-    records.append(loads(harness::FormatRecordJson(record)));
-  }
-  out["records"] = records;
+  out["records"] = ToPythonRecords(summary.records);
   return out;
 }
 

@@ -173,11 +173,7 @@ int RunEstimateCommand(const EstimateArgs& args) {
         "are in {})",
         FormatCount(done, "episode"), records ? records->partial_path() : std::string("(no -o)")));
     return kExitInterruptedBase + interrupt.signal_number();
-  } catch (const harness::ControllerStartError& error) {
-    progress.Erase();
-    PrintError(error.what());
-    return kExitScenarioError;
-  } catch (const std::exception& error) {
+  } catch (const std::exception& error) {  // a controller that cannot start, records unwritable
     progress.Erase();
     PrintError(error.what());
     return kExitScenarioError;

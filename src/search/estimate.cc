@@ -62,6 +62,17 @@ void FitToFailures(const std::vector<const harness::EpisodeRecord*>& failures,
   }
 }
 
+// A bandwidth for `kernels` kernels: each spread (std > 0) times Scott's factor
+// K^(-1 / (d + 4)) over the d coordinates failing depends on, at least kMinProposalStd.
+void NarrowByScott(size_t kernels, MixtureProposal& proposal) {
+  const auto relevant =
+      std::count_if(proposal.std.begin(), proposal.std.end(), [](double s) { return s > 0; });
+  const double scott = std::pow(double(kernels), -1.0 / double(relevant + 4));
+  for (double& std : proposal.std) {
+    if (std > 0) std = std::max(std * scott, kMinProposalStd);
+  }
+}
+
 // The normals' component as kernels around failures of the exploration, drawn with
 // probability in proportion to their weights (systematic resampling, so deterministic), with
 // a bandwidth of the failures' spread times Scott's factor K^(-1 / (d + 4)) over the d
@@ -82,12 +93,7 @@ void PlaceKernels(const std::vector<const harness::EpisodeRecord*>& failures,
         size_t(std::lower_bound(cumulative.begin(), cumulative.end(), at) - cumulative.begin());
     proposal.centres.push_back(failures[std::min(pick, failures.size() - 1)]->coordinates);
   }
-  const auto relevant =
-      std::count_if(proposal.std.begin(), proposal.std.end(), [](double s) { return s > 0; });
-  const double scott = std::pow(double(k), -1.0 / double(relevant + 4));
-  for (double& std : proposal.std) {
-    if (std > 0) std = std::max(std * scott, kMinProposalStd);
-  }
+  NarrowByScott(k, proposal);
 }
 
 // Kernels around `points` (equal weights; at most kKernels of them, evenly spaced), with a
@@ -104,12 +110,7 @@ void PlaceKernelsAt(const std::vector<std::vector<double>>& points, MixturePropo
   const size_t k = std::min<size_t>(kKernels, points.size());
   proposal.centres.clear();
   for (size_t i = 0; i < k; ++i) proposal.centres.push_back(points[i * points.size() / k]);
-  const auto relevant =
-      std::count_if(proposal.std.begin(), proposal.std.end(), [](double s) { return s > 0; });
-  const double scott = std::pow(double(k), -1.0 / double(relevant + 4));
-  for (double& std : proposal.std) {
-    if (std > 0) std = std::max(std * scott, kMinProposalStd);
-  }
+  NarrowByScott(k, proposal);
 }
 
 // Scene start + k's first attempt at points[k]; its later attempts read the stream (the probe
