@@ -339,38 +339,24 @@ Estimate CalcEstimate(const std::vector<WeightedOutcome>& records) {
   return estimate;
 }
 
-std::vector<WeightedOutcome> ReadWeightedRecords(const std::vector<std::string>& lines,
-                                                 const std::string& path,
-                                                 const std::string& spec_hash) {
+std::vector<WeightedOutcome> SelectWeightedRecords(const std::vector<ReportRecord>& records,
+                                                   const std::string& path,
+                                                   const std::string& spec_hash) {
   std::vector<WeightedOutcome> weighted, plain;
   bool searched = false;
-  for (size_t n = 0; n < lines.size(); ++n) {
-    if (lines[n].find_first_not_of(" \t\r") == std::string::npos) continue;
-    const std::string where = fmt::format("{}:{}", path, n + 1);
-    const nlohmann::json record = nlohmann::json::parse(lines[n], nullptr, false);
-    if (!record.is_object() || !record.contains("outcome") || !record["outcome"].is_string()) {
-      throw std::runtime_error(where + ": not an episode record (a JSON object with \"outcome\")");
+  for (const ReportRecord& record : records) {
+    if (!spec_hash.empty() && !record.spec.empty() && record.spec != spec_hash) {
+      throw std::runtime_error(fmt::format(
+          "{}:{}: the record was drawn from another program (fingerprint \"{}\", this one's "
+          "\"{}\")",
+          path, record.line, record.spec, spec_hash));
     }
-    if (!spec_hash.empty() && record.contains("spec") && record["spec"] != spec_hash) {
-      throw std::runtime_error(where + ": the record was drawn from another program (fingerprint " +
-                               record["spec"].dump() + ", this one's \"" + spec_hash + "\")");
-    }
-    WeightedOutcome r{record["outcome"].get<std::string>()};
-    const nlohmann::json search = record.value("search", nlohmann::json());
-    if (search.is_object() && search.value("strategy", "") == "importance") {
-      r.weight = search.value("weight", 0.0);
-      r.uniform_share = search.value("uniform_share", 0.0);
-      r.normalised = search.value("normalised", true);
-      if (!(r.weight > 0) || !(r.uniform_share > 0)) {
-        throw std::runtime_error(where +
-                                 ": an importance-sampling record without a positive "
-                                 "\"weight\" and \"uniform_share\"");
-      }
-      weighted.push_back(r);
-    } else if (search.is_object()) {
+    if (record.search_strategy == "importance") {
+      weighted.push_back({record.outcome, record.weight, record.uniform_share, record.normalised});
+    } else if (!record.search_strategy.empty()) {
       searched = true;  // a search's or an adaptation's scenes: not drawn from the program's law
     } else {
-      plain.push_back(r);
+      plain.push_back({record.outcome});
     }
   }
   if (!weighted.empty()) return weighted;
@@ -380,6 +366,12 @@ std::vector<WeightedOutcome> ReadWeightedRecords(const std::vector<std::string>&
                      " holds only records of a search, whose scenes are not drawn from the "
                      "program's law: estimate with `prs estimate`, whose records carry weights"
                : path + " holds no record");
+}
+
+std::vector<WeightedOutcome> ReadWeightedRecords(const std::vector<std::string>& lines,
+                                                 const std::string& path,
+                                                 const std::string& spec_hash) {
+  return SelectWeightedRecords(ParseReportRecords(lines, path), path, spec_hash);
 }
 
 EstimateSummary RunEstimate(const lang::CompiledProgram& program,

@@ -12,6 +12,7 @@
 
 #include "harness/harness.h"
 #include "sampling/sampler.h"
+#include "search/report.h"
 
 namespace prs::search {
 
@@ -87,10 +88,16 @@ struct WeightedOutcome {
 /// weight is not positive and finite).
 Estimate CalcEstimate(const std::vector<WeightedOutcome>& records);
 
-/// Reads the records an estimate is made of from JSON Lines (`prs estimate -o`, or `prs test
-/// -o` for i.i.d. records, weight 1): those of the importance-sampling phase when there are
-/// any, else every record. Throws std::runtime_error "PATH:LINE: ..." for a line that is not a
-/// record, or a record of another program when `spec_hash` is not empty.
+/// The records an estimate is made of: those of the importance-sampling phase when there are
+/// any, else the i.i.d. ones (`prs test -o`, weight 1). Throws std::runtime_error
+/// "PATH:LINE: ..." for a record of another program when `spec_hash` is not empty, and when
+/// only a search's records (not drawn from the program's law) are left.
+std::vector<WeightedOutcome> SelectWeightedRecords(const std::vector<ReportRecord>& records,
+                                                   const std::string& path,
+                                                   const std::string& spec_hash);
+
+/// SelectWeightedRecords of the JSON Lines records in `lines` (`prs estimate -o`, `prs test
+/// -o`); a line that is not a record is a located error too (ParseReportRecords).
 std::vector<WeightedOutcome> ReadWeightedRecords(const std::vector<std::string>& lines,
                                                  const std::string& path,
                                                  const std::string& spec_hash);

@@ -14,6 +14,9 @@
 #include <numeric>
 #include <stdexcept>
 
+#include "search/estimate.h"
+#include "search/report_plot.h"
+
 namespace prs::search {
 namespace {
 
@@ -115,47 +118,58 @@ void FormatTree(const FeatureTable& table, const TreeNode& node, int indent, std
   }
 }
 
-// A scatter plot of two features: failures red, successes grey.
-std::string FormatScatterSvg(const FeatureTable& table, const std::vector<bool>& failed, int fx,
-                             int fy) {
-  constexpr double kW = 640, kH = 480, kMargin = 60;
-  double x_lo = INFINITY, x_hi = -INFINITY, y_lo = INFINITY, y_hi = -INFINITY;
-  for (const auto& row : table.rows) {
-    if (std::isnan(row[fx]) || std::isnan(row[fy])) continue;
-    x_lo = std::min(x_lo, row[fx]);
-    x_hi = std::max(x_hi, row[fx]);
-    y_lo = std::min(y_lo, row[fy]);
-    y_hi = std::max(y_hi, row[fy]);
+std::string FormatPercent(double p) { return fmt::format("{:#.3g} %", 100 * p); }
+
+// What the report says first: how often the controller fails under the program's law — the
+// importance-sampling estimate when the records carry weights (prs estimate -o), the shares
+// with Wilson intervals when the scenes are i.i.d. (prs test -o) — or, for a search's records,
+// that their shares do not say it. Ends where the outcome table follows.
+std::string FormatHowOften(const std::vector<ReportRecord>& records, const std::string& title) {
+  bool weighted = false, searched = false;
+  for (const ReportRecord& r : records) {
+    weighted |= r.search_strategy == "importance";
+    searched |= !r.search_strategy.empty();
   }
-  if (!(x_hi > x_lo)) x_hi = x_lo + 1;
-  if (!(y_hi > y_lo)) y_hi = y_lo + 1;
-  auto px = [&](double x) { return kMargin + (x - x_lo) / (x_hi - x_lo) * (kW - 2 * kMargin); };
-  auto py = [&](double y) {
-    return kH - kMargin - (y - y_lo) / (y_hi - y_lo) * (kH - 2 * kMargin);
-  };
-  std::string svg = fmt::format(
-      "<svg xmlns=\"http://www.w3.org/2000/svg\" width=\"{0}\" height=\"{1}\" "
-      "font-family=\"sans-serif\" font-size=\"12\">\n<rect width=\"{0}\" height=\"{1}\" "
-      "fill=\"white\"/>\n<rect x=\"{2}\" y=\"{2}\" width=\"{3}\" height=\"{4}\" fill=\"none\" "
-      "stroke=\"black\"/>\n",
-      kW, kH, kMargin, kW - 2 * kMargin, kH - 2 * kMargin);
-  // Successes first, so that failures are drawn on top.
-  for (int pass = 0; pass < 2; ++pass) {
-    for (size_t r = 0; r < table.rows.size(); ++r) {
-      if (failed[r] != (pass == 1)) continue;
-      const auto& row = table.rows[r];
-      if (std::isnan(row[fx]) || std::isnan(row[fy])) continue;
-      svg += fmt::format("<circle cx=\"{:.1f}\" cy=\"{:.1f}\" r=\"2.5\" fill=\"{}\"/>\n",
-                         px(row[fx]), py(row[fy]), pass == 1 ? "#d62728" : "#b0b0b0");
+  if (!searched) {
+    return "## How often it fails\n\nThe scenes were drawn from the program's law (i.i.d.), so "
+           "each outcome's share estimates its probability, with a 95 % Wilson interval.\n\n";
+  }
+  if (!weighted) {
+    return "## The episodes run\n\nA search chose these scenes, so the shares below describe "
+           "these episodes, not how often the controller fails under the program's law "
+           "(`prs estimate` says that).\n\n";
+  }
+  const Estimate e = CalcEstimate(SelectWeightedRecords(records, title, ""));
+  std::string md = "## How often it fails (importance-sampling estimate)\n\n";
+  if (!e.reliable) {
+    md += fmt::format(
+        "The weights degenerate (effective sample size {:.0f} of {} weighted episodes): no "
+        "estimate is given, as its interval could not be trusted; run `prs estimate` with a "
+        "larger --budget.\n\n",
+        e.ess, e.episodes);
+  } else if (e.outcomes.empty()) {
+    md += fmt::format(
+        "No failure in {} weighted episodes: the probability of failing is below {} (a 95 % "
+        "upper bound; a failure rarer than that may still exist).\n\n",
+        e.episodes, FormatPercent(e.upper_bound));
+  } else {
+    md +=
+        "| outcome | probability | 95 % interval | failing episodes | i.i.d. episodes for as "
+        "tight |\n|---|---|---|---|---|\n";
+    for (const OutcomeEstimate& o : e.outcomes) {
+      md += fmt::format("| {} | {} | {} – {} | {} | {:.0f} |\n", o.outcome, FormatPercent(o.p),
+                        FormatPercent(o.ci_low), FormatPercent(o.ci_high), o.episodes,
+                        o.iid_episodes);
     }
+    md += fmt::format(
+        "\nFrom the {} weighted episodes (effective sample size {:.0f}); `prs estimate --from "
+        "{}` gives the same numbers.\n\n",
+        e.episodes, e.ess, title);
   }
-  svg += fmt::format(
-      "<text x=\"{}\" y=\"{}\" text-anchor=\"middle\">{} ({} … {})</text>\n"
-      "<text x=\"16\" y=\"{}\" text-anchor=\"middle\" transform=\"rotate(-90 16 {})\">{} ({} … "
-      "{})</text>\n<text x=\"{}\" y=\"20\">red: failures, grey: successes</text>\n</svg>\n",
-      kW / 2, kH - 20, table.names[fx], FormatNumber(x_lo), FormatNumber(x_hi), kH / 2, kH / 2,
-      table.names[fy], FormatNumber(y_lo), FormatNumber(y_hi), kMargin);
-  return svg;
+  md +=
+      "## The episodes run\n\nThe estimate drew its scenes toward failures, so the shares below "
+      "are of the episodes run, not the program's rates.\n\n";
+  return md;
 }
 
 }  // namespace
@@ -198,6 +212,25 @@ std::vector<ReportRecord> ParseReportRecords(const std::vector<std::string>& lin
       }
     }
     r.saved_scene = text("saved_scene");
+    if (j.contains("search") && j["search"].is_object()) {
+      const nlohmann::json& search = j["search"];
+      const auto number = [&](const char* key) {
+        return search.contains(key) && search[key].is_number() ? search[key].get<double>() : 0.0;
+      };
+      r.search_strategy = search.contains("strategy") && search["strategy"].is_string()
+                              ? search["strategy"].get<std::string>()
+                              : "search";
+      if (r.search_strategy == "importance") {
+        r.weight = number("weight");
+        r.uniform_share = number("uniform_share");
+        r.normalised = !search.contains("normalised") || search["normalised"] != false;
+        if (!(r.weight > 0) || !(r.uniform_share > 0) || !std::isfinite(r.weight)) {
+          throw std::runtime_error(where +
+                                   ": an importance-sampling record without a positive "
+                                   "\"weight\" and \"uniform_share\"");
+        }
+      }
+    }
     records.push_back(std::move(r));
   }
   if (records.empty()) throw std::runtime_error(path + ": no episode records");
@@ -406,8 +439,7 @@ std::string FormatFailureReport(const std::vector<ReportRecord>& records,
   const int64_t n = static_cast<int64_t>(records.size());
   std::string md = fmt::format("# Failure report: {}\n\n{} episodes; {} failed.\n\n", options.title,
                                n, FormatRate(failures, n));
-  // The interval is the outcome's probability under the program's law when the records are
-  // i.i.d. scenes (prs test), not when a search chose them.
+  md += FormatHowOften(records, options.title);
   md += "| outcome | episodes | share | 95 % CI (Wilson) |\n|---|---|---|---|\n";
   for (const auto& [name, count] : outcomes) {
     const auto [lo, hi] = CalcWilsonInterval(count, n);
@@ -522,7 +554,7 @@ std::string FormatFailureReport(const std::vector<ReportRecord>& records,
       }
     }
     if (second >= 0) {
-      *svg = FormatScatterSvg(table, failed, top.feature, second);
+      *svg = FormatScatterSvg(table, failed, top.feature, second, &top);
       const std::string file = options.svg_path.substr(options.svg_path.rfind('/') + 1);
       md += fmt::format("\n## The two most separating features\n\n![{} against {}]({})\n",
                         table.names[top.feature], table.names[second], file);

@@ -14,7 +14,7 @@ namespace prs::search {
 
 /// One episode record as a report reads it.
 struct ReportRecord {
-  int64_t line = 0;  // 1-based line in the results file
+  int64_t line = 0;              // 1-based line in the results file
   std::optional<uint64_t> seed;  // none in records written before seeds were recorded
   uint64_t index = 0;
   std::string outcome;
@@ -25,11 +25,19 @@ struct ReportRecord {
   std::vector<double> coordinates;
   std::vector<std::pair<std::string, double>> features;  // as recorded
   std::string saved_scene;                               // when the scene was saved
+  /// The record's "search" tag: empty for scenes drawn from the program's law (prs test), else
+  /// what chose the scene ("cross-entropy", "estimate-walk", "importance", ...).
+  std::string search_strategy;
+  /// prs estimate's importance-sampling records ("importance"): the weight against the
+  /// program's law, the proposal's uniform share, and whether the estimate is self-normalised.
+  double weight = 1, uniform_share = 1;
+  bool normalised = true;
   bool failed() const { return outcome != "success"; }
 };
 
 /// Parses JSON Lines records. Throws std::runtime_error located at "PATH:LINE" for a line that
-/// is not a record, and for a file with no records.
+/// is not a record or an importance-sampling record without a positive weight, and for a file
+/// with no records.
 std::vector<ReportRecord> ParseReportRecords(const std::vector<std::string>& lines,
                                              const std::string& path);
 

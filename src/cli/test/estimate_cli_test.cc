@@ -1,6 +1,8 @@
 // End-to-end tests of `prs estimate`: the table and --json of a planted failure, the same
 // estimate again from the record file alone (--from), the bound when nothing fails, and bad
 // requests (a budget too small, search records, another program's records).
+#include <fmt/format.h>
+
 #include <cmath>
 #include <nlohmann/json.hpp>
 
@@ -41,6 +43,24 @@ TEST_F(PrsTest, EstimatePrintsAnIntervalAndTheRecordsGiveItAgain) {
   r = Run({"estimate", Example("constructs.prs"), "--from", records});
   EXPECT_EQ(r.exit_code, 1);
   EXPECT_NE(r.err.find("drawn from another program"), std::string::npos) << r.err;
+
+  // prs report puts the same estimate at its top, and a picture with axes beside it.
+  const std::string report = (dir_ / "report.md").string();
+  r = Run({"report", records, "-o", report});
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  const std::string md = ReadText(report);
+  const size_t top = md.find("## How often it fails (importance-sampling estimate)");
+  ASSERT_NE(top, std::string::npos) << md;
+  EXPECT_LT(top, md.find("| outcome | episodes |")) << "the estimate comes first";
+  EXPECT_NE(
+      md.find(fmt::format("| planted-failure | {:#.3g} % | {:#.3g} % – {:#.3g} % |", 100 * p,
+                          100 * e["ci95"][0].get<double>(), 100 * e["ci95"][1].get<double>())),
+      std::string::npos)
+      << md;
+  const std::string svg = ReadText(dir_ / "report.svg");
+  EXPECT_NE(svg.find("class=\"x-tick\""), std::string::npos);
+  EXPECT_NE(svg.find("class=\"split\""), std::string::npos);
+  EXPECT_NE(svg.find("class=\"legend\""), std::string::npos);
 }
 
 TEST_F(PrsTest, EstimateWithoutFailuresGivesABoundAndRefusesBadRequests) {

@@ -20,7 +20,7 @@ using sampling::testing_checks::CompileOrDie;
 TEST(MixtureProposalTest, ItsPointsFollowItsDensity) {
   // E_q[1 / q] = 1 exactly when q is the density the points are drawn from; and a coordinate's
   // share in [0, 0.1) matches the density's integral there.
-  const MixtureProposal proposal{{0.1, 0.7}, {0.05, 0.2}, 0.2};
+  const MixtureProposal proposal{{0.1, 0.7}, {0.05, 0.2}, 0.2, {}};
   const MixturePoints points(proposal);
   const int n = 200'000;
   double sum_inverse = 0;

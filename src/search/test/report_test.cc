@@ -10,6 +10,7 @@
 
 #include "geometry/random.h"
 #include "harness/harness.h"
+#include "search/estimate.h"
 
 namespace prs::search {
 namespace {
@@ -118,6 +119,77 @@ TEST(ReportTest, WilsonIntervalAndBadInput) {
   const auto all_success = ParseReportRecords({"{\"index\": 0, \"outcome\": \"success\"}"}, "r");
   EXPECT_NE(FormatFailureReport(all_success, {"r", ""}, nullptr).find("Every episode succeeded"),
             std::string::npos);
+}
+
+// Records drawn from a known proposal over one coordinate u: half uniform, half uniform on
+// [0, 0.02); failing when u < 0.01, so the probability under the program's law is 1 %.
+std::vector<std::string> ImportanceRecords(int n) {
+  geometry::Rng rng(8);
+  std::vector<std::string> lines;
+  for (int i = 0; i < n; ++i) {
+    harness::EpisodeRecord r;
+    r.index = static_cast<uint64_t>(i);
+    const double u = rng.Uniform01() < 0.5 ? rng.Uniform01() : 0.02 * rng.Uniform01();
+    const double density = 0.5 + (u < 0.02 ? 0.5 / 0.02 : 0.0);
+    r.coordinates = {u};
+    r.features = {{"Cube.x", u}, {"Cube.y", rng.Uniform01()}};
+    r.result.outcome = u < 0.01 ? "planted-failure" : "success";
+    r.search = {{"strategy", "importance"},
+                {"phase", "sampling"},
+                {"weight", 1 / density},
+                {"uniform_share", 0.5},
+                {"normalised", false}};
+    lines.push_back(harness::FormatRecordJson(r));
+  }
+  return lines;
+}
+
+TEST(ReportTest, WeightedRecordsPutTheEstimateFirst) {
+  const auto records = ParseReportRecords(ImportanceRecords(2000), "e.jsonl");
+  const Estimate e = CalcEstimate(SelectWeightedRecords(records, "e.jsonl", ""));
+  ASSERT_EQ(e.outcomes.size(), 1u);
+  EXPECT_LE(e.outcomes[0].ci_low, 0.01);
+  EXPECT_GE(e.outcomes[0].ci_high, 0.01);
+  const std::string md = FormatFailureReport(records, {"e.jsonl", ""}, nullptr);
+  const size_t estimate = md.find("## How often it fails (importance-sampling estimate)");
+  ASSERT_NE(estimate, std::string::npos) << md;
+  const size_t row = md.find(fmt::format("| planted-failure | {:#.3g} % | {:#.3g} % – {:#.3g} % |",
+                                         100 * e.outcomes[0].p, 100 * e.outcomes[0].ci_low,
+                                         100 * e.outcomes[0].ci_high));
+  EXPECT_NE(row, std::string::npos) << md;
+  EXPECT_LT(row, md.find("| outcome | episodes |")) << "the estimate precedes the shares";
+  // Nearly half the records fail, yet the probability is 1 %: the report says the shares are not
+  // rates.
+  EXPECT_NE(md.find("not the program's rates"), std::string::npos) << md;
+
+  // A search's records: no estimate, and the report says why; i.i.d. records: the shares are.
+  std::vector<std::string> searched = SyntheticRecords(200, false);
+  for (std::string& line : searched) {
+    line.insert(line.rfind('}'), ", \"search\": {\"strategy\": \"cross-entropy\"}");
+  }
+  const std::string search_md =
+      FormatFailureReport(ParseReportRecords(searched, "s.jsonl"), {"s.jsonl", ""}, nullptr);
+  EXPECT_EQ(search_md.find("How often it fails"), std::string::npos) << search_md;
+  EXPECT_NE(search_md.find("A search chose these scenes"), std::string::npos) << search_md;
+  const std::string iid_md = FormatFailureReport(
+      ParseReportRecords(SyntheticRecords(200, false), "i.jsonl"), {"i.jsonl", ""}, nullptr);
+  EXPECT_NE(iid_md.find("## How often it fails\n\nThe scenes were drawn from the program's law"),
+            std::string::npos)
+      << iid_md;
+
+  // A weighted record without its weight is a located error.
+  std::vector<std::string> broken = ImportanceRecords(3);
+  broken[1] =
+      "{\"index\": 1, \"outcome\": \"success\", \"search\": {\"strategy\": "
+      "\"importance\", \"weight\": \"heavy\"}}";
+  try {
+    ParseReportRecords(broken, "e.jsonl");
+    ADD_FAILURE() << "a record without a weight was accepted";
+  } catch (const std::runtime_error& error) {
+    EXPECT_NE(std::string(error.what()).find("e.jsonl:2: an importance-sampling record"),
+              std::string::npos)
+        << error.what();
+  }
 }
 
 }  // namespace
