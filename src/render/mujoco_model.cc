@@ -13,6 +13,7 @@
 #include <string>
 
 #include "export/export.h"
+#include "render/box_box_guard.h"
 #include "shapes/mesh.h"
 
 namespace prs::render {
@@ -60,8 +61,10 @@ ModelPtr LoadRenderModel(const std::vector<MeshKey>& meshes) {
   for (size_t i = 0; i < meshes.size(); ++i) {
     const std::string name = RenderMeshName(i);
     const shapes::MeshShape& mesh = *meshes[i].first;
-    assets += "    " + exporting::FormatMjcfMesh(name, mesh.mesh.vertices_O, &mesh.mesh.triangles,
-                                                 meshes[i].second) + "\n";
+    assets += "    " +
+              exporting::FormatMjcfMesh(name, mesh.mesh.vertices_O, &mesh.mesh.triangles,
+                                        meshes[i].second) +
+              "\n";
     geoms += "    <geom name=\"" + name + "\" type=\"mesh\" mesh=\"" + name +
              "\" contype=\"0\" conaffinity=\"0\"/>\n";
   }
@@ -80,6 +83,7 @@ void InstallMujocoMessageHandlers() {
 
 ModelPtr LoadModelFromXml(const std::string& xml) {
   InstallMujocoMessageHandlers();
+  InstallBoxBoxGuard();
   // mjVFS holds fixed arrays of file names (megabytes): keep it off the stack.
   auto vfs = std::make_unique<mjVFS>();
   mj_defaultVFS(vfs.get());

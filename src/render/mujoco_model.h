@@ -26,7 +26,8 @@ using ModelPtr = std::unique_ptr<mjModel, ModelDeleter>;
 using DataPtr = std::unique_ptr<mjData, DataDeleter>;
 
 /// Compiles an MJCF document. Throws std::runtime_error with MuJoCo's compiler message (which
-/// names the element and line) when the document is rejected.
+/// names the element and line) when the document is rejected. Installs the box-box guard
+/// (box_box_guard.h) first.
 ModelPtr LoadModelFromXml(const std::string& xml);
 
 /// A fresh mjData for `model`, at the model's initial state.
