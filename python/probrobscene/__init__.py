@@ -47,7 +47,7 @@ def load(path: PathLike, params: Optional[Mapping[str, ParamValue]] = None,
          search_path: Optional[Sequence[PathLike]] = None, *, max_attempts: int = 10_000,
          naive: bool = False, stable: Union[bool, float, None] = None,
          stable_move: float = 0.01, stable_turn: float = 5.0,
-         settle: Union[bool, float, None] = None) -> Scenario:
+         settle: Union[bool, float, None] = None, sampler: str = "rejection") -> Scenario:
     """Compiles the scenario in the file ``path``.
 
     Args:
@@ -69,6 +69,10 @@ def load(path: PathLike, params: Optional[Mapping[str, ParamValue]] = None,
             seconds; a scene not at rest by then, with an object outside the workspace, or
             breaking a ``require settled``, is rejected as "unsettled" (docs/physics.md).
             Not with ``stable``.
+        sampler: ``"rejection"`` (exact, the default) or ``"gibbs"`` (``prs --sampler gibbs``):
+            scenes from a Markov chain over the scene coordinates, for clutter whole-scene
+            rejection cannot reach; they are correlated (``Scenario.gibbs`` says how much, once
+            scenes were drawn; docs/sampling.md).
 
     Raises:
         ScenarioError: The file cannot be read or the program has errors; the exception carries
@@ -76,21 +80,22 @@ def load(path: PathLike, params: Optional[Mapping[str, ParamValue]] = None,
     """
     return _core.compile_file(os.fspath(path),
                               _load_options(params, search_path, max_attempts, naive,
-                                            stable, stable_move, stable_turn, settle))
+                                            stable, stable_move, stable_turn, settle, sampler))
 
 
 def loads(text: str, params: Optional[Mapping[str, ParamValue]] = None,
           search_path: Optional[Sequence[PathLike]] = None, *, name: str = "<string>",
           max_attempts: int = 10_000, naive: bool = False,
           stable: Union[bool, float, None] = None, stable_move: float = 0.01,
-          stable_turn: float = 5.0, settle: Union[bool, float, None] = None) -> Scenario:
+          stable_turn: float = 5.0, settle: Union[bool, float, None] = None,
+          sampler: str = "rejection") -> Scenario:
     """Compiles scenario source text; ``name`` names it in messages and anchors its imports.
 
     The other arguments and the errors are those of :func:`load`.
     """
     return _core.compile_text(text, name,
                               _load_options(params, search_path, max_attempts, naive,
-                                            stable, stable_move, stable_turn, settle))
+                                            stable, stable_move, stable_turn, settle, sampler))
 
 
 def _param_text(name: str, value: ParamValue) -> str:
@@ -114,7 +119,7 @@ def _seconds(name: str, value, default: float) -> float:
 
 
 def _load_options(params, search_path, max_attempts, naive, stable=None, stable_move=0.01,
-                  stable_turn=5.0, settle=None) -> "_core.LoadOptions":
+                  stable_turn=5.0, settle=None, sampler="rejection") -> "_core.LoadOptions":
     options = _core.LoadOptions()
     options.params = [(str(k), _param_text(str(k), v)) for k, v in (params or {}).items()]
     dirs = [os.fspath(d) for d in (search_path or [])]
@@ -128,6 +133,9 @@ def _load_options(params, search_path, max_attempts, naive, stable=None, stable_
         options.stable_turn_deg = float(stable_turn)
     if settle is not None and settle is not False:
         options.settle_s = _seconds("settle", settle, 3.0)
+    if sampler not in ("rejection", "gibbs"):
+        raise ValueError(f"sampler must be 'rejection' or 'gibbs', got {sampler!r}")
+    options.sampler = sampler
     return options
 
 

@@ -32,7 +32,7 @@ def init(dir: PathLike, path: PathLike, n: int, *, seed: int = 0, shard_size: in
          max_attempts: int = 10_000, naive: bool = False, search: Optional[str] = None,
          batch: Optional[int] = None, stable: Union[bool, float, None] = None,
          stable_move: float = 0.01, stable_turn: float = 5.0,
-         settle: Union[bool, float, None] = None) -> str:
+         settle: Union[bool, float, None] = None, sampler: str = "rejection") -> str:
     """Makes the campaign directory ``dir`` (new or empty), as ``prs campaign init``: ``n``
     episodes of ``controller`` (a built-in name) or ``exec`` (a shell command, docs/harness.md)
     in the scenario file ``path``, or ``n`` scenes without either, in shards of ``shard_size``.
@@ -41,14 +41,16 @@ def init(dir: PathLike, path: PathLike, n: int, *, seed: int = 0, shard_size: in
     With ``search`` ("ce", "anneal" or "random") the episodes are a failure search of budget
     ``n`` in generations of ``batch`` (default as ``prs search``), run generation after
     generation (docs/search.md). ``stable`` and ``settle`` as for :func:`probrobscene.load`
-    (``--stable``, ``--settle``): every shard keeps only scenes at rest, or settles them. Returns the campaign id. Raises ScenarioError for a
+    (``--stable``, ``--settle``): every shard keeps only scenes at rest, or settles them;
+    ``sampler="gibbs"`` draws the scenes from Gibbs chains (``--sampler gibbs``), the same
+    scenes for any shard layout. Returns the campaign id. Raises ScenarioError for a
     scenario that does not compile and ValueError for a directory that is in use or an unknown
     controller or strategy."""
     from . import _load_options  # the package's own conversion of params and options
     if n < 1 or shard_size < 1:
         raise ValueError(f"n and shard_size must be >= 1, got {n} and {shard_size}")
     options = _load_options(params, search_path, max_attempts, naive, stable, stable_move,
-                            stable_turn, settle)
+                            stable_turn, settle, sampler)
     if search is not None and search not in ("ce", "anneal", "random"):
         raise ValueError(f"unknown search strategy {search!r} (strategies: ce, anneal, random)")
     if batch is not None and (search is None or batch < 1):

@@ -71,6 +71,7 @@ struct LoadOptions {
   double stable_move_m = 0.01;
   double stable_turn_deg = 5;
   double settle_s = 0;  // --settle: most simulated seconds to come to rest; 0 off
+  std::string sampler = "rejection";  // --sampler: "rejection" or "gibbs"
 };
 
 /// scenario.cc: compiles `text` (or the file `path` when `text` is null), raising

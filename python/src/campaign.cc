@@ -10,8 +10,8 @@
 #include "campaign/search_campaign.h"
 #include "campaign/slurm.h"
 #include "controllers/builtin.h"
-#include "sim/settle.h"
 #include "output/line_writer.h"
+#include "sim/settle.h"
 
 namespace prs::python {
 namespace {
@@ -29,7 +29,7 @@ auto CallCampaign(Body body) -> decltype(body()) {
 
 harness::ControllerFactory ChooseFactory(const campaign::CampaignSpec& spec) {
   const controllers::ControllerChoice choice{spec.controller, spec.exec, spec.timeout_s,
-                                              spec.persistent, spec.startup_timeout_s};
+                                             spec.persistent, spec.startup_timeout_s};
   if (auto factory = controllers::MakeControllerFactory(choice, nullptr)) return *factory;
   throw py::value_error("unknown controller '" + spec.controller +
                         "' (controllers: " + controllers::ListControllerNames() + ")");
@@ -72,6 +72,9 @@ std::string Init(const std::string& dir, const std::string& path, const LoadOpti
     spec.scenario_words.insert(spec.scenario_words.end(), {"-p", name + "=" + value});
   }
   if (load.naive) spec.scenario_words.push_back("--naive");
+  if (load.sampler != "rejection") {
+    spec.scenario_words.insert(spec.scenario_words.end(), {"--sampler", load.sampler});
+  }
   if (load.stable_s > 0) {
     spec.scenario_words.push_back(fmt::format("--stable={}", load.stable_s));
     if (load.stable_move_m != LoadOptions{}.stable_move_m) {
@@ -86,6 +89,7 @@ std::string Init(const std::string& dir, const std::string& path, const LoadOpti
   if (load.settle_s > 0) spec.scenario_words.push_back(fmt::format("--settle={}", load.settle_s));
   spec.params = load.params;
   spec.naive = load.naive;
+  spec.sampler = load.sampler;
   spec.stable_s = load.stable_s;
   spec.stable_move_m = load.stable_move_m;
   spec.stable_turn_deg = load.stable_turn_deg;
@@ -201,8 +205,8 @@ py::dict Merge(const std::string& dir, const std::string& output, bool partial) 
 void BindCampaign(py::module_& m) {
   m.def("campaign_init", &Init, py::arg("dir"), py::arg("path"), py::arg("options"),
         py::arg("count"), py::arg("shard_size"), py::arg("seed"), py::arg("controller"),
-        py::arg("exec"), py::arg("timeout_s"), py::arg("persistent"),
-        py::arg("startup_timeout_s"), py::arg("strategy"), py::arg("batch"));
+        py::arg("exec"), py::arg("timeout_s"), py::arg("persistent"), py::arg("startup_timeout_s"),
+        py::arg("strategy"), py::arg("batch"));
   m.def("campaign_plan", &Plan, py::arg("dir"));
   m.def("campaign_run_shard", &RunShard, py::arg("dir"), py::arg("shard"), py::arg("threads"));
   m.def("campaign_status", &Status, py::arg("dir"));

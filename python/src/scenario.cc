@@ -10,8 +10,9 @@
 #include "analysis/property_variation.h"
 #include "analysis/scenario_outline.h"
 #include "bindings.h"
-#include "sim/settle.h"
 #include "sampling/batch.h"
+#include "sampling/gibbs.h"
+#include "sim/settle.h"
 
 namespace prs::python {
 namespace {
@@ -102,6 +103,22 @@ class Scenario {
   std::optional<double> settle() const {
     return settle_s_ > 0 ? std::optional<double>(settle_s_) : std::nullopt;
   }
+  std::string sampler() const { return options_.gibbs ? "gibbs" : "rejection"; }
+  /// --sampler gibbs: the chain's schedule once scenes were drawn, else None.
+  py::object gibbs() const {
+    if (!options_.gibbs) return py::none();
+    const std::optional<sampling::GibbsPlan> plan = options_.gibbs->plan();
+    if (!plan) return py::none();
+    py::dict d;
+    d["autocorrelation_sweeps"] = plan->tau_sweeps;
+    d["autocorrelation_statistic"] = plan->tau_statistic;
+    d["autocorrelation_scenes"] = plan->tau_scenes;
+    d["thin_sweeps"] = plan->thin_sweeps;
+    d["burn_in_sweeps"] = plan->burn_in_sweeps;
+    d["blocks"] = plan->blocks;
+    d["scenes_per_chain"] = plan->scenes_per_chain;
+    return d;
+  }
 
  private:
   ScenePtr Wrap(sampling::SampledScene sampled) const {
@@ -131,8 +148,8 @@ class Scenario {
   ProgramPtr program_;
   std::string path_;
   sampling::SampleOptions options_;
-  double stable_s_ = 0;  // --stable's seconds (the check is options_.accept), 0 when off
-  double settle_s_ = 0;  // --settle's seconds (options_.accept settles), 0 when off
+  double stable_s_ = 0;             // --stable's seconds (the check is options_.accept), 0 when off
+  double settle_s_ = 0;             // --settle's seconds (options_.accept settles), 0 when off
   sampling::SceneSampler sampler_;  // for sample(): its caches persist between calls
 };
 
@@ -220,14 +237,18 @@ std::unique_ptr<Scenario> Compile(const std::string& path, const std::optional<s
   sampling::SampleOptions sample;
   sample.max_attempts = load.max_attempts;
   sample.run.mode = load.naive ? lang::SamplingMode::kNaive : lang::SamplingMode::kRegion;
+  if (load.sampler == "gibbs") {
+    sample.gibbs = std::make_shared<sampling::GibbsRequest>();
+  } else if (load.sampler != "rejection") {
+    throw py::value_error("sampler must be 'rejection' or 'gibbs', got '" + load.sampler + "'");
+  }
   try {
     sample.accept = sim::MakePhysicsTest(
         {load.stable_s, load.stable_move_m, load.stable_turn_deg, load.settle_s});
   } catch (const std::invalid_argument& error) {
     throw py::value_error(error.what());
   }
-  return std::make_unique<Scenario>(std::move(program), path, sample, load.stable_s,
-                                    load.settle_s);
+  return std::make_unique<Scenario>(std::move(program), path, sample, load.stable_s, load.settle_s);
 }
 
 }  // namespace
@@ -296,6 +317,12 @@ void BindScenario(py::module_& m) {
       .def_property_readonly("path", &Scenario::path, "The file (or loads()' name).")
       .def_property_readonly("max_attempts", &Scenario::max_attempts,
                              "Attempts per scene before sampling fails.")
+      .def_property_readonly("sampler", &Scenario::sampler,
+                             "'rejection' (exact, the default) or 'gibbs' (load(sampler=...)).")
+      .def_property_readonly("gibbs", &Scenario::gibbs,
+                             "With sampler='gibbs', once scenes were drawn: the chain's "
+                             "schedule (autocorrelation time in sweeps, thinning, burn-in); "
+                             "else None.")
       .def_property_readonly("naive", &Scenario::naive, "True in the naive sampling mode.")
       .def_property_readonly("stable", &Scenario::stable,
                              "The simulated seconds of the physics check (stable=), or None.")
@@ -322,7 +349,8 @@ void BindScenario(py::module_& m) {
       .def_readwrite("stable_s", &LoadOptions::stable_s)
       .def_readwrite("stable_move_m", &LoadOptions::stable_move_m)
       .def_readwrite("stable_turn_deg", &LoadOptions::stable_turn_deg)
-      .def_readwrite("settle_s", &LoadOptions::settle_s);
+      .def_readwrite("settle_s", &LoadOptions::settle_s)
+      .def_readwrite("sampler", &LoadOptions::sampler);
 }
 
 }  // namespace prs::python

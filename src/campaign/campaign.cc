@@ -19,6 +19,7 @@
 #include "output/line_writer.h"
 #include "output/scene_json.h"
 #include "sampling/batch.h"
+#include "sampling/gibbs.h"
 #include "search/like.h"
 
 namespace prs::campaign {
@@ -35,6 +36,7 @@ nlohmann::json ToJson(const CampaignSpec& s) {
           {"scenario_words", s.scenario_words},
           {"params", params},
           {"naive", s.naive},
+          {"sampler", s.sampler},
           {"max_attempts", s.max_attempts},
           {"seed", s.seed},
           {"count", s.count},
@@ -84,6 +86,7 @@ sampling::SampleOptions MakeSampleOptions(const CampaignSpec& spec) {
   sampling::SampleOptions sample;
   sample.max_attempts = spec.max_attempts;
   sample.run.mode = spec.naive ? lang::SamplingMode::kNaive : lang::SamplingMode::kRegion;
+  if (spec.sampler == "gibbs") sample.gibbs = std::make_shared<sampling::GibbsRequest>();
   return sample;
 }
 
@@ -147,11 +150,12 @@ CampaignSpec InitCampaign(const std::string& dir, const lang::CompiledProgram& p
   const std::vector<lang::ProgramResource> resources = lang::ListResources(program);
   for (const lang::ProgramResource& r : resources) {
     const fs::path name(r.name);
-    const bool inside = name.is_relative() && std::none_of(name.begin(), name.end(), [](const fs::path& part) {
-      return part == "..";
-    });
+    const bool inside =
+        name.is_relative() &&
+        std::none_of(name.begin(), name.end(), [](const fs::path& part) { return part == ".."; });
     if (!inside) {
-      throw CampaignError("the file '" + r.name + "' (an arm or a mesh) is not below the scenario's directory, so "
+      throw CampaignError("the file '" + r.name +
+                          "' (an arm or a mesh) is not below the scenario's directory, so "
                           "a campaign cannot carry it; put it next to the .prs file and name it "
                           "by a relative path");
     }
@@ -208,6 +212,7 @@ CampaignSpec ReadCampaign(const std::string& dir) {
     s.scenario_words = j.at("scenario_words").get<std::vector<std::string>>();
     for (const auto& p : j.at("params")) s.params.emplace_back(p.at(0), p.at(1));
     s.naive = j.at("naive");
+    s.sampler = j.value("sampler", "rejection");
     s.max_attempts = j.at("max_attempts");
     s.seed = j.at("seed");
     s.count = j.at("count");

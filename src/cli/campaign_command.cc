@@ -81,6 +81,7 @@ int RunInit(const CampaignArgs& args) {
   spec.scenario_words = MakeScenarioWords(args.scenario, args.sampling);
   for (const auto& [name, value] : program->param_overrides) spec.params.emplace_back(name, value);
   spec.naive = args.sampling.naive;
+  spec.sampler = args.sampling.sampler;
   spec.max_attempts = args.sampling.max_attempts;
   const sim::PhysicsCheck physics = MakePhysicsCheck(args.sampling);
   spec.stable_s = physics.stable_s;
@@ -128,9 +129,9 @@ int RunShardCommand(const CampaignArgs& args) {
     program = campaign::CompileCampaign(args.dir, spec);
     std::optional<harness::ControllerFactory> factory;
     if (spec.kind != "sample") {
-      factory = ChooseController({spec.controller, spec.exec, spec.timeout_s, spec.persistent,
-                                         spec.startup_timeout_s},
-                                        interrupt.flag());
+      factory = ChooseController(
+          {spec.controller, spec.exec, spec.timeout_s, spec.persistent, spec.startup_timeout_s},
+          interrupt.flag());
       if (!factory) return kExitUsage;
     }
     campaign::RunShard(args.dir, spec, *program, static_cast<uint64_t>(args.shard),

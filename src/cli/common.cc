@@ -16,6 +16,7 @@
 #include <thread>
 
 #include "output/line_writer.h"
+#include "sampling/gibbs.h"
 
 namespace prs::cli {
 namespace {
@@ -161,6 +162,14 @@ void AddSamplingOptions(CLI::App& command, SamplingArgs& args) {
       ->capture_default_str();
   command.add_flag("--naive", args.naive,
                    "the paper's baseline: positions from the workspace, specifiers checked after");
+  command
+      .add_option("--sampler", args.sampler,
+                  "rejection (exact, the default) or gibbs (a Markov chain over the scene "
+                  "coordinates, for clutter that rejection cannot reach; correlated scenes: "
+                  "docs/sampling.md)")
+      ->type_name("KIND")
+      ->check(CLI::IsMember({"rejection", "gibbs"}))
+      ->capture_default_str();
   command.add_option("--max-attempts", args.max_attempts, "attempts per scene before failing")
       ->type_name("K")
       ->check(IntegerAtLeast(1))
@@ -220,7 +229,21 @@ sampling::SampleOptions MakeSampleOptions(const SamplingArgs& args) {
   options.max_attempts = args.max_attempts;
   options.run.mode = args.naive ? lang::SamplingMode::kNaive : lang::SamplingMode::kRegion;
   options.accept = sim::MakePhysicsTest(MakePhysicsCheck(args));
+  if (args.sampler == "gibbs") options.gibbs = std::make_shared<sampling::GibbsRequest>();
   return options;
+}
+
+std::string DescribeGibbs(const sampling::SampleOptions& options, int64_t scenes) {
+  if (!options.gibbs) return "";
+  const std::optional<sampling::GibbsPlan> plan = options.gibbs->plan();
+  if (!plan) return "";
+  return fmt::format(
+      "--sampler gibbs: these scenes come from Markov chains ({} scenes a chain) and are "
+      "correlated, not independent: autocorrelation time {:.1f} sweeps ({}), {} between "
+      "scenes, {} of burn-in; {} {} worth about {:.0f} independent ones",
+      plan->scenes_per_chain, plan->tau_sweeps, plan->tau_statistic,
+      FormatCount(plan->thin_sweeps, "sweep"), FormatCount(plan->burn_in_sweeps, "sweep"),
+      FormatCount(scenes, "scene"), scenes == 1 ? "is" : "are", plan->CalcEffectiveScenes(scenes));
 }
 
 sampling::BatchOptions MakeBatchOptions(const SamplingArgs& args, int64_t count,

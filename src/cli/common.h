@@ -41,6 +41,7 @@ struct SamplingArgs {
   uint64_t seed = 0;
   int threads = 1;
   bool naive = false;
+  std::string sampler = "rejection";  // --sampler rejection|gibbs
   int64_t max_attempts = 10'000;
   /// --stable[=T]: the simulated seconds of the physics check, as given ("1" for a bare
   /// --stable); empty when off.
@@ -55,9 +56,14 @@ struct SamplingArgs {
 /// The physics check of --stable or --settle (sim::MakePhysicsTest makes it).
 sim::PhysicsCheck MakePhysicsCheck(const SamplingArgs& args);
 
+/// What --sampler gibbs says after a run of `scenes` scenes: that they are correlated, the
+/// autocorrelation time, thinning, burn-in and the effective number of scenes. Empty without
+/// --sampler gibbs, or before any scene was drawn.
+std::string DescribeGibbs(const sampling::SampleOptions& options, int64_t scenes);
+
 /// Adds FILE, -I and -p to `command`.
 void AddScenarioOptions(CLI::App& command, ScenarioArgs& args);
-/// Adds -s, --threads, --naive, --max-attempts and --stable[=T], --stable-move,
+/// Adds -s, --threads, --naive, --sampler, --max-attempts and --stable[=T], --stable-move,
 /// --stable-turn, --settle[=T] to `command`.
 void AddSamplingOptions(CLI::App& command, SamplingArgs& args);
 /// Which scenes a command makes: -n N (at least `min_count`) and --start I.

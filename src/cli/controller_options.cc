@@ -5,8 +5,8 @@
 
 #include <filesystem>
 
-#include "controllers/builtin.h"
 #include "cli/text_table.h"
+#include "controllers/builtin.h"
 #include "harness/registry.h"
 
 namespace prs::cli {
@@ -50,7 +50,7 @@ std::optional<harness::ControllerFactory> ChooseController(const ControllerArgs&
     return std::nullopt;
   }
   const controllers::ControllerChoice choice{args.controller, args.exec, args.timeout_s,
-                                              args.persistent, args.startup_timeout_s};
+                                             args.persistent, args.startup_timeout_s};
   if (auto factory = controllers::MakeControllerFactory(choice, &cancel)) return factory;
   std::vector<std::string> names;
   for (const harness::ControllerInfo& info : harness::ListControllers()) names.push_back(info.name);
@@ -67,6 +67,8 @@ std::vector<std::string> MakeScenarioWords(const ScenarioArgs& scenario,
   for (const std::string& dir : scenario.include_dirs) words.insert(words.end(), {"-I", dir});
   for (const std::string& param : scenario.params) words.insert(words.end(), {"-p", param});
   if (sampling.naive) words.push_back("--naive");
+  if (sampling.sampler != SamplingArgs{}.sampler)
+    words.insert(words.end(), {"--sampler", sampling.sampler});
   // --stable changes which attempt a scene is (unstable ones are rejected): keep it, with
   // tolerances that are not the defaults.
   if (!sampling.stable_s.empty()) {

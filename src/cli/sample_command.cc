@@ -10,12 +10,12 @@
 #include "cli/commands.h"
 #include "cli/common.h"
 #include "cli/design_option.h"
-#include "search/like.h"
 #include "cli/interrupt.h"
 #include "cli/progress.h"
 #include "output/line_writer.h"
 #include "output/scene_json.h"
 #include "sampling/batch.h"
+#include "search/like.h"
 
 namespace prs::cli {
 namespace {
@@ -90,6 +90,8 @@ class SceneWriterRun {
           std::chrono::duration<double>(std::chrono::steady_clock::now() - begin).count();
       if (!args_.quiet) {
         PrintNote(FormatSampleSummary(summary, seconds, sampling::CountBatchThreads(options)));
+        const std::string gibbs = DescribeGibbs(options.sample, summary.scenes);
+        if (!gibbs.empty()) PrintNote(gibbs);
       }
       return kExitSuccess;
     } catch (const lang::ScenarioError& error) {
@@ -169,9 +171,8 @@ class SceneWriterRun {
         }
         return true;
       }
-      const search::FailureSet failures =
-          search::ReadFailures(*lines, args_.like, args_.outcome, search::CalcSpecHash(program_),
-                               dimension);
+      const search::FailureSet failures = search::ReadFailures(
+          *lines, args_.like, args_.outcome, search::CalcSpecHash(program_), dimension);
       like_ = std::make_unique<search::GaussianPoints>(search::FitLike(failures));
       if (!args_.quiet) {
         PrintNote(fmt::format("drawing scenes like the {} of {}",

@@ -40,6 +40,7 @@ SamplingStats MeasureSampling(const lang::CompiledProgram& program, const StatsA
                                      }};
   progress.Attach(options, callbacks);
   stats.summary = sampling::SampleBatch(program, options, callbacks);
+  if (options.sample.gibbs) stats.gibbs = options.sample.gibbs->plan();
   stats.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - begin).count();
   return stats;
 }

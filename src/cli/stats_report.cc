@@ -64,19 +64,33 @@ std::string FormatSeconds(double seconds) {
   return fmt::format("{:.2f} s", seconds);
 }
 
+// --sampler gibbs: what the scenes are worth, and that they are correlated.
+std::string FormatGibbs(const SamplingStats& stats) {
+  if (!stats.gibbs) return "";
+  const sampling::GibbsPlan& g = *stats.gibbs;
+  const int64_t scenes = stats.summary.scenes;
+  return fmt::format(
+      "  gibbs sampler    correlated scenes: {:.0f} effective ({:.0f}/s); autocorrelation {:.1f} "
+      "sweeps ({}),\n"
+      "                   {} sweeps between scenes, {} of burn-in, {} blocks, {} scenes a chain\n",
+      g.CalcEffectiveScenes(scenes), Ratio(g.CalcEffectiveScenes(scenes), stats.seconds),
+      g.tau_sweeps, g.tau_statistic, g.thin_sweeps, g.burn_in_sweeps, g.blocks, g.scenes_per_chain);
+}
+
 std::string FormatOverview(const SamplingStats& stats) {
   const auto& s = stats.summary;
   return fmt::format(
-      "{}: {} from seed {}, {} sampling, {}\n\n"
-      "  acceptance rate  {}  ({} in {})\n"
-      "  attempts/scene   {:.2f} mean, {} max\n"
-      "  time per scene   {}  ({:.0f} scenes/s; {} in all)\n",
-      stats.file, FormatCount(s.scenes, "scene"), stats.seed, stats.naive ? "naive" : "region",
-      FormatCount(stats.threads, "thread"), Percent(s.scenes, s.attempts),
-      FormatCount(s.scenes, "scene"), FormatCount(s.attempts, "attempt"),
-      Ratio(s.attempts, s.scenes), stats.max_attempts_per_scene,
-      FormatSeconds(Ratio(stats.seconds, s.scenes)), Ratio(s.scenes, stats.seconds),
-      FormatSeconds(stats.seconds));
+             "{}: {} from seed {}, {} sampling, {}\n\n"
+             "  acceptance rate  {}  ({} in {})\n"
+             "  attempts/scene   {:.2f} mean, {} max\n"
+             "  time per scene   {}  ({:.0f} scenes/s; {} in all)\n",
+             stats.file, FormatCount(s.scenes, "scene"), stats.seed,
+             stats.naive ? "naive" : "region", FormatCount(stats.threads, "thread"),
+             Percent(s.scenes, s.attempts), FormatCount(s.scenes, "scene"),
+             FormatCount(s.attempts, "attempt"), Ratio(s.attempts, s.scenes),
+             stats.max_attempts_per_scene, FormatSeconds(Ratio(stats.seconds, s.scenes)),
+             Ratio(s.scenes, stats.seconds), FormatSeconds(stats.seconds)) +
+         FormatGibbs(stats);
 }
 
 std::string FormatReasonTable(const sampling::BatchSummary& s) {
@@ -167,6 +181,21 @@ std::string FormatStatsJson(const SamplingStats& stats, const lang::SourceManage
       {"seconds_per_scene", Ratio(stats.seconds, s.scenes)},
       {"scenes_per_second", Ratio(s.scenes, stats.seconds)},
   };
+  report["sampler"] = stats.gibbs ? "gibbs" : "rejection";
+  if (stats.gibbs) {
+    const sampling::GibbsPlan& g = *stats.gibbs;
+    report["gibbs"] = {
+        {"effective_scenes", g.CalcEffectiveScenes(s.scenes)},
+        {"effective_scenes_per_second", Ratio(g.CalcEffectiveScenes(s.scenes), stats.seconds)},
+        {"autocorrelation_sweeps", g.tau_sweeps},
+        {"autocorrelation_statistic", g.tau_statistic},
+        {"autocorrelation_scenes", g.tau_scenes},
+        {"thin_sweeps", g.thin_sweeps},
+        {"burn_in_sweeps", g.burn_in_sweeps},
+        {"blocks", g.blocks},
+        {"scenes_per_chain", g.scenes_per_chain},
+        {"pilot_sweeps", g.pilot_sweeps}};
+  }
   return report.dump(2, ' ', false, nlohmann::ordered_json::error_handler_t::replace) + "\n";
 }
 

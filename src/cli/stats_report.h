@@ -3,10 +3,12 @@
 #pragma once
 
 #include <cstdint>
+#include <optional>
 #include <string>
 
 #include "lang/source.h"
 #include "sampling/batch.h"
+#include "sampling/gibbs.h"
 
 namespace prs::cli {
 
@@ -16,6 +18,7 @@ struct SamplingStats {
   uint64_t seed = 0;
   int threads = 1;
   bool naive = false;
+  std::optional<sampling::GibbsPlan> gibbs;  // with --sampler gibbs
   sampling::BatchSummary summary;
   int64_t max_attempts_per_scene = 0;  // the most attempts any one scene took
   double seconds = 0;                  // wall-clock time of the sampling

@@ -15,13 +15,13 @@
 #include "cli/common.h"
 #include "cli/controller_options.h"
 #include "cli/design_option.h"
-#include "search/like.h"
 #include "cli/failure_pictures.h"
 #include "cli/interrupt.h"
 #include "cli/progress.h"
 #include "cli/test_replay.h"
 #include "harness/harness.h"
 #include "output/line_writer.h"
+#include "search/like.h"
 
 namespace prs::cli {
 namespace {
@@ -34,8 +34,8 @@ struct TestArgs {
   SceneRangeArgs range{.count = 100, .start = 0};
   std::string output;  // empty: no records written
   std::string save_failures_dir;
-  std::string replay;         // --replay RECORDS.jsonl: the scenes of an earlier run
-  bool failed_only = false;   // --failed: only its failures
+  std::string replay;        // --replay RECORDS.jsonl: the scenes of an earlier run
+  bool failed_only = false;  // --failed: only its failures
   bool quiet = false;
   const CLI::Option* count_option = nullptr;  // given: -n selects among saved scenes too
 };
@@ -105,7 +105,12 @@ int RunAndReport(const lang::CompiledProgram* program, int64_t count, const Epis
     const double seconds =
         std::chrono::duration<double>(std::chrono::steady_clock::now() - begin).count();
     std::cout << FormatOutcomeTable(summary.records) << std::flush;
-    if (!args.quiet) PrintNote(FormatTestSummary(summary, seconds));
+    if (!args.quiet) {
+      PrintNote(FormatTestSummary(summary, seconds));
+      const std::string gibbs =
+          DescribeGibbs(options.sample, static_cast<int64_t>(summary.records.size()));
+      if (!gibbs.empty()) PrintNote(gibbs);
+    }
     if (IsEveryOutcome(summary.records, "exit-127")) {
       PrintNote("every episode exited with code 127: the shell did not find the --exec command");
     }
@@ -155,7 +160,8 @@ int RunSavedScenes(const TestArgs& args, const harness::ControllerFactory& facto
                              !args.sampling.settle_s.empty() || !args.sampling.stable_s.empty() ||
                              args.sampling.naive;
   if (scene_options) {
-    PrintError(args.scenario.file + " holds scenes, which run as they are: --replay, --design, "
+    PrintError(args.scenario.file +
+               " holds scenes, which run as they are: --replay, --design, "
                "--naive, --stable and --settle need the .prs program");
     return kExitUsage;
   }
@@ -192,7 +198,7 @@ int RunReplayedRecords(const lang::CompiledProgram& program, const TestArgs& arg
   if (!range) return kExitUsage;
   const auto [first, count] = *range;
   const std::vector<search::ReportRecord> chosen(replayed->begin() + first,
-                                                  replayed->begin() + first + count);
+                                                 replayed->begin() + first + count);
   harness::RunOptions options = MakeRunOptions(args, interrupt.flag());
   options.spec_hash = search::CalcSpecHash(program);
   // A scene drawn at coordinates is not scene (seed, index) of the stream.

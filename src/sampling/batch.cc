@@ -13,6 +13,8 @@
 #include <thread>
 #include <vector>
 
+#include "sampling/gibbs.h"
+
 namespace prs::sampling {
 
 void BatchSummary::Add(const SampledScene& sampled) {
@@ -76,8 +78,11 @@ struct OffsetRange {
 // the lock and the wake-ups are paid per run of scenes, not per scene.
 class ReorderQueue {
  public:
-  ReorderQueue(int64_t count, int64_t window, int64_t chunk)
-      : slots_(window), count_(count), chunk_(chunk) {}
+  /// With `aligned`, claims end where (offset + phase) is a multiple of `chunk` (a Gibbs
+  /// chain's scenes are claimed together: sampling/gibbs.h).
+  ReorderQueue(int64_t count, int64_t window, int64_t chunk, bool aligned = false,
+               int64_t phase = 0)
+      : slots_(window), count_(count), chunk_(chunk), aligned_(aligned), phase_(phase) {}
 
   /// Worker: the next offsets to sample (at most `chunk`, as many as the window has room
   /// for), waiting while it is full; nullopt when nothing is left to claim (done, stopping,
@@ -86,8 +91,9 @@ class ReorderQueue {
     std::unique_lock lock(mutex_);
     slot_free_.wait(lock, [&] { return IsClaimOver() || HasFreeSlot(); });
     if (IsClaimOver()) return std::nullopt;
+    const int64_t chunk = aligned_ ? chunk_ - (next_claim_ + phase_) % chunk_ : chunk_;
     const int64_t end =
-        std::min({next_claim_ + chunk_, next_take_ + Window(), std::min(count_, failed_offset_)});
+        std::min({next_claim_ + chunk, next_take_ + Window(), std::min(count_, failed_offset_)});
     const OffsetRange range{next_claim_, end};
     next_claim_ = end;
     return range;
@@ -173,6 +179,8 @@ class ReorderQueue {
   std::vector<std::optional<BatchScene>> slots_;
   const int64_t count_;
   const int64_t chunk_;
+  const bool aligned_;
+  const int64_t phase_;
   int64_t next_claim_ = 0;
   int64_t next_take_ = 0;  // offsets below it are consumed; their slots are free
   int64_t failed_offset_ = std::numeric_limits<int64_t>::max();
@@ -225,9 +233,18 @@ int64_t ChooseChunk(int64_t count, int threads, int window_per_thread) {
 
 BatchSummary SampleOnWorkers(const lang::CompiledProgram& program, const BatchOptions& options,
                              const BatchCallbacks& callbacks, int threads) {
-  const int64_t window = int64_t{threads} * std::max(options.window_per_thread, 1);
-  ReorderQueue queue(options.count, window,
-                     ChooseChunk(options.count, threads, std::max(options.window_per_thread, 1)));
+  int64_t window_per_thread = std::max(options.window_per_thread, 1);
+  int64_t chunk = ChooseChunk(options.count, threads, window_per_thread);
+  int64_t phase = 0;
+  if (options.sample.gibbs) {
+    // A chain's scenes cost one thinning interval each only on the thread that ran the ones
+    // before: claim whole chains, with room in the window for two per thread.
+    chunk = std::max<int64_t>(1, options.sample.gibbs->settings().scenes_per_chain);
+    window_per_thread = std::max(window_per_thread, 2 * chunk);
+    phase = static_cast<int64_t>(options.start % static_cast<uint64_t>(chunk));
+  }
+  ReorderQueue queue(options.count, int64_t{threads} * window_per_thread, chunk,
+                     options.sample.gibbs != nullptr, phase);
   BatchSummary summary;
   std::vector<std::jthread> workers;
   StopQueueOnExit stop_queue{queue};

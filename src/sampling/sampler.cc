@@ -3,6 +3,9 @@
 #include "sampling/sampler.h"
 
 #include <set>
+#include <stdexcept>
+
+#include "sampling/gibbs.h"
 
 namespace prs::sampling {
 
@@ -21,14 +24,11 @@ void RejectionCounts::Merge(const RejectionCounts& other) {
   for (const auto& [key, example] : other.examples) examples.emplace(key, example);
 }
 
-namespace {
-
-// Throws "sampling-failed" located at the most frequent culprit, with counts per reason. When
-// some attempts made a scene and the scene test (SampleOptions::accept, of kind `tested_kind`)
-// rejected every one, that is the message: the program's own most frequent reason is not
-// what stands in the way.
-[[noreturn]] void ThrowSamplingFailure(const RejectionCounts& counts, int64_t attempts,
-                                       int64_t tested, lang::RejectionKind tested_kind) {
+// When some attempts made a scene and the scene test (SampleOptions::accept) rejected every
+// one, that is the message: the program's own most frequent reason is not what stands in the
+// way.
+void ThrowSamplingFailure(const RejectionCounts& counts, int64_t attempts, int64_t tested,
+                          lang::RejectionKind tested_kind) {
   const std::pair<const std::pair<lang::RejectionKind, std::string>, int64_t>* worst = nullptr;
   for (const auto& entry : counts.by_culprit) {
     if (tested > 0 && entry.first.first != tested_kind) continue;  // the test's culprits only
@@ -43,27 +43,33 @@ namespace {
   d.message = tested > 0 ? "no valid scene after " + std::to_string(attempts) + " attempts: the " +
                                std::to_string(tested) +
                                " scenes that met the program's constraints all failed the scene "
-                               "test, most often " + reason
+                               "test, most often " +
+                               reason
                          : "no valid scene after " + std::to_string(attempts) +
                                " attempts; the most frequent reason was " + reason;
   if (!example.detail.empty()) {
     d.notes.push_back({{}, false, "in one such attempt: " + example.detail});
   }
   for (const auto& [kind, n] : counts.by_kind) {
-    d.notes.push_back({{}, false, std::string(lang::RejectionKindName(kind)) + ": " +
-                                      std::to_string(n) + " rejections"});
+    d.notes.push_back(
+        {{},
+         false,
+         std::string(lang::RejectionKindName(kind)) + ": " + std::to_string(n) + " rejections"});
   }
   d.notes.push_back({{}, false, "relax this constraint, or raise the limit with --max-attempts"});
   throw lang::ScenarioError(std::move(d));
 }
+
+namespace {
 
 // Throws "sampling-failed" for a rejection that every attempt would repeat.
 [[noreturn]] void ThrowCertainFailure(const lang::Rejection& rejection) {
   lang::Diagnostic d;
   d.id = "sampling-failed";
   d.span = rejection.span;
-  d.message = std::string("every attempt fails the same way (nothing random is drawn before "
-                          "it): ") +
+  d.message = std::string(
+                  "every attempt fails the same way (nothing random is drawn before "
+                  "it): ") +
               lang::RejectionKindName(rejection.kind) + ": " + rejection.culprit;
   if (!rejection.detail.empty()) d.notes.push_back({{}, false, rejection.detail});
   d.notes.push_back({{}, false, "change the fixed values so that this constraint can hold"});
@@ -77,11 +83,23 @@ bool IsSameStream(geometry::Rng a, geometry::Rng b) { return a.NextU64() == b.Ne
 }  // namespace
 
 SceneSampler::SceneSampler(const lang::CompiledProgram& program, SampleOptions options)
-    : program_(program), options_(std::move(options)), cache_(lang::MakeRunCache()) {}
+    : program_(program), options_(std::move(options)), cache_(lang::MakeRunCache()) {
+  if (options_.gibbs && options_.points) {
+    lang::Diagnostic d;
+    d.id = "gibbs-unsupported";
+    d.message =
+        "--sampler gibbs chooses its own scene coordinates, so it cannot draw scenes at given "
+        "points (--design, --like, --near, prs search, prs estimate, --replay)";
+    d.notes.push_back({{}, false, "leave --sampler gibbs out of this command"});
+    throw lang::ScenarioError(std::move(d));
+  }
+  if (options_.gibbs) gibbs_ = std::make_unique<GibbsChain>(program_, options_);
+}
 
 SceneSampler::~SceneSampler() = default;
 
 SampledScene SceneSampler::Sample(uint64_t seed, uint64_t index) {
+  if (gibbs_) return gibbs_->Sample(seed, index);
   SampledScene result;
   result.seed = seed;
   result.index = index;

@@ -46,6 +46,9 @@ class AttemptPoints {
 /// function of the scene, so that scenes stay the same for any thread count.
 using SceneTest = std::function<std::optional<lang::Rejection>(lang::Scene&)>;
 
+class GibbsRequest;  // sampling/gibbs.h
+class GibbsChain;
+
 struct SampleOptions {
   lang::RunOptions run;
   int64_t max_attempts = 10'000;
@@ -57,6 +60,10 @@ struct SampleOptions {
   bool use_run_cache = true;
   /// Optional: run on every scene an attempt makes (e.g. --stable).
   SceneTest accept;
+  /// Optional (--sampler gibbs): scenes from a Markov chain over the scene coordinates instead
+  /// of whole-scene rejection (sampling/gibbs.h); shared by the samplers of a run, which work
+  /// out its plan once. Not with `points`.
+  std::shared_ptr<GibbsRequest> gibbs;
 };
 
 /// Rejections of one scene (or many), keyed by (kind, culprit).
@@ -103,7 +110,14 @@ class SceneSampler {
   const lang::CompiledProgram& program_;
   SampleOptions options_;
   std::unique_ptr<lang::RunCache, lang::RunCacheDeleter> cache_;
+  std::unique_ptr<GibbsChain> gibbs_;  // with options_.gibbs
 };
+
+/// Throws "sampling-failed" located at the most frequent culprit of `counts`, with counts per
+/// reason; when `tested` scenes met the program's constraints and the scene test (of kind
+/// `tested_kind`) rejected every one, says that instead. For the samplers.
+[[noreturn]] void ThrowSamplingFailure(const RejectionCounts& counts, int64_t attempts,
+                                       int64_t tested, lang::RejectionKind tested_kind);
 
 /// The scene coordinates of the program (docs/search.md): one entry per number the longest of
 /// `probe_attempts` attempts (scene 0 of seed 0 and its retries, on the stream) drew, at most

@@ -6,6 +6,7 @@
 #include <filesystem>
 #include <memory>
 
+#include "sampling/gibbs.h"
 #include "sampling/sampler.h"
 
 namespace prs::exporting::testing_scenes {
@@ -56,7 +57,12 @@ std::vector<ExampleScene> SampleExamples() {
   for (const fs::path& file : files) {
     const lang::CompiledProgram* program = Compile(file.string(), nullptr);
     if (program == nullptr) continue;
-    sampling::SceneSampler sampler(*program);
+    // Clutter beyond whole-scene rejection is drawn by a Gibbs chain (sampling/gibbs.h).
+    sampling::SampleOptions options;
+    if (file.filename() == "bin_clutter.prs") {
+      options.gibbs = std::make_shared<sampling::GibbsRequest>();
+    }
+    sampling::SceneSampler sampler(*program, options);
     for (uint64_t seed = 1; seed <= 3; ++seed) {
       for (uint64_t index = 0; index < 2; ++index) {
         const lang::Scene& scene = Keep(sampler.Sample(seed, index));
