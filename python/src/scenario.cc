@@ -111,7 +111,8 @@ class Scenario {
     if (!plan) return py::none();
     py::dict d;
     d["autocorrelation_sweeps"] = plan->tau_sweeps;
-    d["autocorrelation_statistic"] = plan->tau_statistic;
+    d["slowest_statistic"] = plan->tau_statistic;
+    d["slowest_statistic_sweeps"] = plan->tau_worst_sweeps;
     d["autocorrelation_scenes"] = plan->tau_scenes;
     d["thin_sweeps"] = plan->thin_sweeps;
     d["burn_in_sweeps"] = plan->burn_in_sweeps;

@@ -239,9 +239,9 @@ std::string DescribeGibbs(const sampling::SampleOptions& options, int64_t scenes
   if (!plan) return "";
   return fmt::format(
       "--sampler gibbs: these scenes come from Markov chains ({} scenes a chain) and are "
-      "correlated, not independent: autocorrelation time {:.1f} sweeps ({}), {} between "
-      "scenes, {} of burn-in; {} {} worth about {:.0f} independent ones",
-      plan->scenes_per_chain, plan->tau_sweeps, plan->tau_statistic,
+      "correlated, not independent: autocorrelation time {:.1f} sweeps (the slowest statistic, "
+      "{}: {:.1f}), {} between scenes, {} of burn-in; {} {} worth about {:.0f} independent ones",
+      plan->scenes_per_chain, plan->tau_sweeps, plan->tau_statistic, plan->tau_worst_sweeps,
       FormatCount(plan->thin_sweeps, "sweep"), FormatCount(plan->burn_in_sweeps, "sweep"),
       FormatCount(scenes, "scene"), scenes == 1 ? "is" : "are", plan->CalcEffectiveScenes(scenes));
 }

@@ -71,10 +71,12 @@ std::string FormatGibbs(const SamplingStats& stats) {
   const int64_t scenes = stats.summary.scenes;
   return fmt::format(
       "  gibbs sampler    correlated scenes: {:.0f} effective ({:.0f}/s); autocorrelation {:.1f} "
-      "sweeps ({}),\n"
-      "                   {} sweeps between scenes, {} of burn-in, {} blocks, {} scenes a chain\n",
+      "sweeps\n"
+      "                   (the slowest statistic, {}: {:.1f}); {} between scenes, {} of burn-in,\n"
+      "                   {} blocks, {} scenes a chain\n",
       g.CalcEffectiveScenes(scenes), Ratio(g.CalcEffectiveScenes(scenes), stats.seconds),
-      g.tau_sweeps, g.tau_statistic, g.thin_sweeps, g.burn_in_sweeps, g.blocks, g.scenes_per_chain);
+      g.tau_sweeps, g.tau_statistic, g.tau_worst_sweeps, FormatCount(g.thin_sweeps, "sweep"),
+      FormatCount(g.burn_in_sweeps, "sweep"), g.blocks, g.scenes_per_chain);
 }
 
 std::string FormatOverview(const SamplingStats& stats) {

@@ -61,6 +61,17 @@ class FixedAnalysis {
 
   void Run() { RunModule(program_.main_module); }
 
+  // Per module, the names whose value after the module ran is the same in every scene.
+  std::vector<std::set<std::string>> FixedNames() const {
+    std::vector<std::set<std::string>> names(envs_.size());
+    for (size_t m = 0; m < envs_.size(); ++m) {
+      for (const auto& [name, info] : envs_[m]) {
+        if (info.fixed) names[m].insert(name);
+      }
+    }
+    return names;
+  }
+
  private:
   using Env = std::map<std::string, Info>;
 
@@ -367,6 +378,10 @@ bool FixedAnalysis::AllButPositionFixed(const ObjectPlan& plan,
 
 }  // namespace
 
-void MarkFixedPlacements(CompiledProgram& program) { FixedAnalysis(program).Run(); }
+std::vector<std::set<std::string>> MarkFixedPlacements(CompiledProgram& program) {
+  FixedAnalysis analysis(program);
+  analysis.Run();
+  return analysis.FixedNames();
+}
 
 }  // namespace prs::lang::internal

@@ -197,6 +197,23 @@ class Interpreter {
 
   // --- objects (objects.cc) ---
   Value CreateObject(const ObjectPlan& plan, SourceSpan span);
+  /// Appends a copy of a made object (a template's, a reused one) at this statement, with the
+  /// name it is bound to; returns its index. Its scene checks are still to run.
+  int AddObjectCopy(const SceneObject& object, SourceSpan span);
+  /// RunOptions::reuse_objects (reuse.cc): the object made at `index` from the same numbers by
+  /// an earlier run, checked and placed in the scene, or nullopt to make it.
+  std::optional<Value> ReuseObject(const ObjectPlan& plan, int index, SourceSpan span);
+  /// Whether the object being made at `index` may be kept for reuse, and what it starts from.
+  struct ReuseMark {
+    bool active = false;
+    int first_coordinate = 0;
+    int64_t draws_before = 0;
+    std::optional<geometry::Rng> stream_before;
+  };
+  ReuseMark MarkReuse(const ObjectPlan& plan) const;
+  /// Keeps the object just made (before its scene checks) when its draws all came from the
+  /// coordinates.
+  void KeepForReuse(const ObjectPlan& plan, int index, const ReuseMark& mark);
   void RunPlanStep(const PlanStep& step, int index, SourceSpan span);
   Value EvalDefault(const PropertyDefault& d, int index);
   void SetOrientation(const PlanStep& step, int index);
@@ -204,7 +221,14 @@ class Interpreter {
   void SetProperty(int index, const std::string& name, Value value, SourceSpan value_span);
   Value GetProperty(int index, const std::string& name, SourceSpan span);
   void FinishObject(int index, SourceSpan span);
+  // --- collisions (collisions.cc): each object against those made before it ---
   void CheckCollisions(int index);
+  /// The objects CheckCollisions tests `index` against, in index order: every completed
+  /// object with a box that allows no collision, or, past RunOptions::collision_grid_from of
+  /// them, those the grid finds near it (a superset of those whose bounding balls meet).
+  void FindCollisionCandidates(int index, std::vector<int>& candidates);
+  void AddToCollisionGrid(int index);
+  [[noreturn]] void RejectCollision(int index, int other);
   void CheckWorkspace();
   geometry::OrientedBox BoxOf(int index) const;
   // --- shapes (shapes.cc): meshes where boxes would be conservative ---
@@ -340,6 +364,15 @@ class Interpreter {
   RunOptions options_;
   Scene scene_;
   std::vector<bool> completed_;      // per object: fully placed (collision checks use these)
+  /// The collision checks' broad phase: completed collidable objects, by the cells of a
+  /// horizontal grid their bounding balls' squares overlap (collisions.cc).
+  struct CollisionGrid {
+    std::vector<int> objects;  // every one, in index order
+    std::unordered_map<uint64_t, std::vector<int>> cells;
+    std::vector<int> large;  // balls wider than a cell: tested against every object
+    bool built = false;      // cells and large hold `objects`
+  };
+  CollisionGrid collision_grid_;
   std::vector<ModuleEnv> module_envs_;
   std::vector<bool> module_ran_;
   std::vector<bool> module_shared_;     // globals from, or stored in, RunCache::module_globals

@@ -142,6 +142,14 @@ struct RunOptions {
   /// target, as any other object; the same law, with positions that differ in their last bits.
   /// For tests.
   bool move_on_regions = true;
+  /// With a cache and coordinates: an object of a site that is a function of its own draws
+  /// (ObjectPlan::own_draws_only) is copied from the last run that made it at this index from
+  /// the same numbers, instead of made again (the Gibbs sampler's runs differ in one object's
+  /// numbers). Never changes the scene.
+  bool reuse_objects = false;
+  /// The collision checks use a grid once this many collidable objects are made (collisions.cc;
+  /// below it, testing each is cheaper). Never changes the scene or the rejection; for tests.
+  int collision_grid_from = 32;
 };
 
 /// What must still hold once a simulator has let the scene's free bodies come to rest

@@ -26,6 +26,8 @@ Value Interpreter::CreateObject(const ObjectPlan& plan, SourceSpan span) {
   if (const RunCache::ObjectTemplate* kept = CachedTemplate(plan)) {
     return CreateFromTemplate(plan, *kept, span);
   }
+  if (std::optional<Value> reused = ReuseObject(plan, index, span)) return std::move(*reused);
+  const ReuseMark reuse = MarkReuse(plan);
   const int64_t draws_before = draws_;
   SceneObject object;
   object.properties.Mutable().reserve(plan.steps.size() + 1);  // each property, the position
@@ -50,9 +52,22 @@ Value Interpreter::CreateObject(const ObjectPlan& plan, SourceSpan span) {
     effects += draws_ + static_cast<int64_t>(scene_.objects.size()) - before;
   }
   StoreTemplate(plan, index, effects);
+  KeepForReuse(plan, index, reuse);
   FinishObject(index, span);
   StoreFixedObject(plan, index, draws_before);
   return ObjectRef{index};
+}
+
+int Interpreter::AddObjectCopy(const SceneObject& object, SourceSpan span) {
+  const int index = static_cast<int>(scene_.objects.size());
+  scene_.objects.push_back(object);
+  SceneObject& copy = scene_.objects.back();
+  copy.span = span;
+  copy.name.reset();
+  if (pending_name_) copy.name = *pending_name_;
+  pending_name_ = nullptr;
+  completed_.push_back(false);
+  return index;
 }
 
 Vector3d Interpreter::PlaceObject(const ObjectPlan& plan, int index, SourceSpan span) {
@@ -225,24 +240,6 @@ std::string Interpreter::DescribeBox(int index) const {
   return o.DisplayName(index) + " (" + FormatNumber(d.x()) + " x " + FormatNumber(d.y()) + " x " +
          FormatNumber(d.z()) + " m at (" + FormatNumber(p.x()) + ", " + FormatNumber(p.y()) + ", " +
          FormatNumber(p.z()) + "))";
-}
-
-void Interpreter::CheckCollisions(int index) {
-  const SceneObject& o = scene_.objects[index];
-  if (!o.cls->has_box || o.allow_collisions) return;
-  for (int other = 0; other < static_cast<int>(scene_.objects.size()); ++other) {
-    const SceneObject& p = scene_.objects[other];
-    if (other == index || !completed_[other] || !p.cls->has_box || p.allow_collisions) continue;
-    if (DoObjectsOverlap(index, other)) {
-      const int first = std::min(index, other), second = std::max(index, other);
-      std::string culprit = scene_.objects[first].DisplayName(first) + " and " +
-                            scene_.objects[second].DisplayName(second);
-      std::string detail = IsExplained(RejectionKind::kCollision, culprit)
-                               ? ""
-                               : DescribeBox(first) + " overlaps " + DescribeBox(second);
-      Reject(RejectionKind::kCollision, std::move(culprit), scene_.objects[index].span, std::move(detail));
-    }
-  }
 }
 
 const geometry::ConvexRegion* Interpreter::Workspace() const {

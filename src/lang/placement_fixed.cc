@@ -197,14 +197,7 @@ void Interpreter::StoreTemplate(const ObjectPlan& plan, int index, int64_t effec
 // the template's values in every scene. The scene checks follow as for any object.
 Value Interpreter::CreateFromTemplate(const ObjectPlan& plan, const RunCache::ObjectTemplate& kept,
                                       SourceSpan span) {
-  const int index = static_cast<int>(scene_.objects.size());
-  scene_.objects.push_back(kept.object);
-  SceneObject& object = scene_.objects.back();
-  object.span = span;
-  object.name.reset();
-  if (pending_name_) object.name = *pending_name_;
-  pending_name_ = nullptr;
-  completed_.push_back(false);
+  const int index = AddObjectCopy(kept.object, span);
   const Vector3d p = PlaceObject(plan, index, span);
   scene_.objects[index].properties.Mutable()[kept.position_slot].second = Value(p);
   FinishObject(index, span);

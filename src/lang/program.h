@@ -86,6 +86,11 @@ struct ObjectPlan {
   /// erodes by the box's inscribed ball.
   enum class OpenTurn { kNone, kYaw, kAny };
   OpenTurn open_turn = OpenTurn::kNone;
+  /// The object is a function of the numbers its creation draws: its specifiers and class
+  /// defaults read only names that are the same in every scene (and never rebound), its own
+  /// properties and built-ins, and create nothing (own_draws.cc). A run may then reuse an
+  /// earlier run's object made from the same numbers (RunOptions::reuse_objects).
+  bool own_draws_only = false;
 };
 
 /// A parsed module (the main file or an imported one).

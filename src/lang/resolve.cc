@@ -191,7 +191,9 @@ bool ResolveProgram(CompiledProgram& program, const std::map<std::string, int>& 
       program.default_plans.emplace(cls.get(), std::move(plan));
     }
   }
-  if (!diagnostics.has_errors()) internal::MarkFixedPlacements(program);
+  if (!diagnostics.has_errors()) {
+    internal::MarkOwnDrawSites(program, internal::MarkFixedPlacements(program));
+  }
   return !diagnostics.has_errors();
 }
 

@@ -25,8 +25,13 @@ void CheckModule(CompiledProgram& program, int m, DiagnosticEngine& diagnostics)
 bool BuildObjectPlan(const CreateObject& create, const ClassInfo& cls, ObjectPlan& plan,
                      DiagnosticEngine& diagnostics);
 
-/// Marks the creation plans whose region or whole object is the same in every scene.
-void MarkFixedPlacements(CompiledProgram& program);
+/// Marks the creation plans whose region or whole object is the same in every scene. Returns,
+/// per module, the names whose value after the module has run is the same in every scene.
+std::vector<std::set<std::string>> MarkFixedPlacements(CompiledProgram& program);
+
+/// Marks the creation sites whose object is a function of its own draws (ObjectPlan::
+/// own_draws_only; own_draws.cc), given MarkFixedPlacements' fixed names.
+void MarkOwnDrawSites(CompiledProgram& program, const std::vector<std::set<std::string>>& fixed);
 
 /// Builds the plan for a class created with no specifiers.
 bool BuildDefaultPlan(const ClassInfo& cls, ObjectPlan& plan, DiagnosticEngine& diagnostics);

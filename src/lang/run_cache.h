@@ -78,6 +78,15 @@ class RunCache {
   /// for its scene only and is never a key of `colliders` or `hull_planes` (its address may be
   /// reused once it is gone).
   static constexpr size_t kMaxPrimitives = 256;
+  /// The last object each own-draws creation site made at each scene index, before its scene
+  /// checks, with the coordinates its draws took (RunOptions::reuse_objects): made from the
+  /// same numbers again, it would be the same object.
+  struct ReusableObject {
+    std::vector<double> u;
+    int64_t draws = 0;
+    SceneObject object;
+  };
+  std::map<std::pair<const ObjectPlan*, int>, ReusableObject> reusable;
   std::map<std::tuple<shapes::Primitive, double, double, double>,
            std::shared_ptr<const shapes::MeshShape>> primitives;
 };

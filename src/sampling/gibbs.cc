@@ -69,6 +69,7 @@ class ChainEngine {
     run_ = options.run;
     run_.cache = cache;
     run_.explained = &explained_;
+    run_.reuse_objects = options.gibbs && options.gibbs->settings().reuse_objects;
   }
 
   // Sequential placement: runs the program at a random point and, while it is rejected,
@@ -220,9 +221,9 @@ double GibbsPlan::CalcEffectiveScenes(int64_t scenes) const {
   return static_cast<double>(scenes) / std::max(1.0, tau_scenes);
 }
 
-double CalcAutocorrelationTime(const std::vector<double>& series) {
+std::vector<double> CalcAutocorrelation(const std::vector<double>& series, size_t max_lag) {
   const size_t n = series.size();
-  if (n < 4) return 1;
+  if (n < 4) return {};
   double mean = 0;
   for (double x : series) mean += x;
   mean /= static_cast<double>(n);
@@ -230,12 +231,24 @@ double CalcAutocorrelationTime(const std::vector<double>& series) {
   for (double x : series) c0 += (x - mean) * (x - mean);
   // A constant series (up to rounding: a height computed from a varying position) has none.
   const double tiny = 1e-9 * (1 + std::fabs(mean));
-  if (!(c0 > static_cast<double>(n) * tiny * tiny)) return 1;
-  double tau = 1;
-  for (size_t m = 1; m < n / 2; ++m) {
+  if (!(c0 > static_cast<double>(n) * tiny * tiny)) return {};
+  std::vector<double> rho = {1.0};
+  for (size_t m = 1; m <= max_lag && m < n / 2; ++m) {
     double c = 0;
     for (size_t i = 0; i + m < n; ++i) c += (series[i] - mean) * (series[i + m] - mean);
-    tau += 2 * c / c0;
+    rho.push_back(c / c0);
+  }
+  return rho;
+}
+
+double CalcAutocorrelationTime(const std::vector<double>& series) {
+  return CalcWindowedTime(CalcAutocorrelation(series, series.size() / 2));
+}
+
+double CalcWindowedTime(const std::vector<double>& rho) {
+  double tau = 1;
+  for (size_t m = 1; m < rho.size(); ++m) {
+    tau += 2 * rho[m];
     if (static_cast<double>(m) >= 5 * tau) break;  // Sokal's window
   }
   return std::max(1.0, tau);
@@ -273,13 +286,27 @@ const GibbsPlan& GibbsRequest::Plan(const lang::CompiledProgram& program,
   plan.pilot_sweeps = settings_.pilot_sweeps;
   plan.pilot_runs = pilot.runs();
   plan.scenes_per_chain = std::max<int64_t>(1, settings_.scenes_per_chain);
+  // The chain's autocorrelation time from the autocorrelation function averaged over every
+  // statistic that varies (one statistic's estimate from a short pilot is noisy, and the
+  // largest of hundreds of them mostly measures the noise); the slowest statistic is kept too.
+  const size_t max_lag = static_cast<size_t>(settings_.pilot_sweeps / 4);
+  std::vector<double> mean_rho;
+  int varying = 0;
   for (const auto& [name, values] : series) {
-    const double tau = CalcAutocorrelationTime(values);
-    if (tau > plan.tau_sweeps || plan.tau_statistic.empty()) {
-      plan.tau_sweeps = tau;
+    const std::vector<double> rho = CalcAutocorrelation(values, max_lag);
+    if (rho.empty()) continue;
+    ++varying;
+    if (mean_rho.size() < rho.size()) mean_rho.resize(rho.size(), 0.0);
+    for (size_t k = 0; k < rho.size(); ++k) mean_rho[k] += rho[k];
+    const double tau = CalcWindowedTime(rho);
+    if (tau > plan.tau_worst_sweeps || plan.tau_statistic.empty()) {
+      plan.tau_worst_sweeps = tau;
       plan.tau_statistic = name;
     }
   }
+  for (double& r : mean_rho) r /= std::max(1, varying);
+  plan.statistics = varying;
+  plan.tau_sweeps = CalcWindowedTime(mean_rho);
   plan.thin_sweeps = settings_.thin_sweeps >= 1
                          ? settings_.thin_sweeps
                          : std::max<int64_t>(1, static_cast<int64_t>(std::floor(plan.tau_sweeps)));

@@ -24,15 +24,19 @@ namespace prs::sampling {
 /// What the chain's schedule was chosen from: a pilot chain run once per program and options
 /// (seed-independent, so the schedule is the same for every seed, thread count and shard).
 struct GibbsPlan {
-  int dimension = 0;           // coordinates of a scene
-  int blocks = 0;              // objects (and free draws) redrawn one at a time
-  int64_t pilot_sweeps = 0;    // sweeps the pilot measured
-  int64_t pilot_runs = 0;      // program runs the pilot made, start included
-  double tau_sweeps = 1;       // integrated autocorrelation time, in sweeps (the worst statistic)
-  std::string tau_statistic;   // which statistic it was ("Cube#3.x")
-  int64_t burn_in_sweeps = 0;  // sweeps from the start before a chain's first scene
-  int64_t thin_sweeps = 1;     // sweeps between a chain's scenes
-  double tau_scenes = 1;       // the autocorrelation time between consecutive scenes
+  int dimension = 0;         // coordinates of a scene
+  int blocks = 0;            // objects (and free draws) redrawn one at a time
+  int64_t pilot_sweeps = 0;  // sweeps the pilot measured
+  int64_t pilot_runs = 0;    // program runs the pilot made, start included
+  /// The integrated autocorrelation time, in sweeps, of the autocorrelation function averaged
+  /// over the `statistics` that vary (every object's position and every coordinate).
+  double tau_sweeps = 1;
+  int statistics = 0;
+  double tau_worst_sweeps = 1;  // the slowest single statistic's (a noisier estimate)
+  std::string tau_statistic;    // which statistic that was ("Cube#3.x")
+  int64_t burn_in_sweeps = 0;   // sweeps from the start before a chain's first scene
+  int64_t thin_sweeps = 1;      // sweeps between a chain's scenes
+  double tau_scenes = 1;        // the autocorrelation time between consecutive scenes
   int64_t scenes_per_chain = 32;
 
   /// The effective sample size of `scenes` consecutive scenes: scenes / tau_scenes.
@@ -49,6 +53,10 @@ struct GibbsSettings {
   /// Tries to redraw one block before the move keeps the old values (a move that keeps them
   /// still leaves the law invariant).
   int64_t max_block_tries = 1000;
+  /// Runs copy the objects whose numbers did not change from the run before
+  /// (lang::RunOptions::reuse_objects). False: every run makes every object; the same scenes,
+  /// slower (for tests).
+  bool reuse_objects = true;
 };
 
 /// The request for Gibbs sampling, shared by every sampler of a run: settings in, and the plan
@@ -88,8 +96,16 @@ class GibbsChain {
   std::unique_ptr<State> state_;
 };
 
-/// The integrated autocorrelation time of a series (Sokal's self-consistent window: the
-/// smallest M with M >= 5 tau(M)); 1 for a series without correlation, at least 1.
+/// The autocorrelation function of a series at lags 0..max_lag (below half its length); empty
+/// for a series that does not vary.
+std::vector<double> CalcAutocorrelation(const std::vector<double>& series, size_t max_lag);
+
+/// The integrated autocorrelation time 1 + 2 sum rho(k) of an autocorrelation function, summed
+/// over Sokal's self-consistent window (the smallest M with M >= 5 tau(M)); at least 1.
+double CalcWindowedTime(const std::vector<double>& rho);
+
+/// CalcWindowedTime of a series' autocorrelation function; 1 for a series without
+/// correlation or that does not vary.
 double CalcAutocorrelationTime(const std::vector<double>& series);
 
 }  // namespace prs::sampling

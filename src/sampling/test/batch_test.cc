@@ -18,6 +18,7 @@ namespace prs::sampling {
 namespace {
 
 using testing_checks::CompileOrDie;
+using testing_checks::Fingerprint;
 using testing_checks::RepoPath;
 
 std::unique_ptr<lang::CompiledProgram> CompileTableCube() {
@@ -27,27 +28,6 @@ std::unique_ptr<lang::CompiledProgram> CompileTableCube() {
   auto program = lang::CompileFile(RepoPath("examples/table_cube.prs"), options, diagnostics);
   EXPECT_FALSE(diagnostics.has_errors());
   return program;
-}
-
-// Every number of a scene, exactly (hex floats), so equal fingerprints mean equal scenes.
-std::string Fingerprint(const SampledScene& sampled) {
-  std::string text = std::to_string(sampled.index) + " " + std::to_string(sampled.attempts);
-  char buffer[64];
-  for (const lang::SceneObject& o : sampled.scene.objects) {
-    text += " " + o.cls->name + ":" + o.name.value_or("-");
-    const double numbers[] = {o.p_WO.x(),       o.p_WO.y(),      o.p_WO.z(), o.R_WO.w(),
-                              o.R_WO.x(),       o.R_WO.y(),      o.R_WO.z(), o.dimensions.x(),
-                              o.dimensions.y(), o.dimensions.z()};
-    for (double x : numbers) {
-      std::snprintf(buffer, sizeof buffer, " %a", x);
-      text += buffer;
-    }
-  }
-  for (const auto& [key, n] : sampled.rejections.by_culprit) {
-    text += " " + std::string(lang::RejectionKindName(key.first)) + "/" + key.second + "=" +
-            std::to_string(n);
-  }
-  return text;
 }
 
 std::vector<std::string> SampleFingerprints(const lang::CompiledProgram& program, uint64_t start,

@@ -7,6 +7,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstdio>
 #include <cstdlib>
 #include <memory>
 #include <string>
@@ -113,6 +114,27 @@ inline bool BoxesOverlapByPoints(const SceneObject& a, const SceneObject& b) {
     }
   }
   return false;
+}
+
+// Every number of a scene, exactly (hex floats), so equal fingerprints mean equal scenes.
+inline std::string Fingerprint(const SampledScene& sampled) {
+  std::string text = std::to_string(sampled.index) + " " + std::to_string(sampled.attempts);
+  char buffer[64];
+  for (const lang::SceneObject& o : sampled.scene.objects) {
+    text += " " + o.cls->name + ":" + o.name.value_or("-");
+    const double numbers[] = {o.p_WO.x(),       o.p_WO.y(),      o.p_WO.z(), o.R_WO.w(),
+                              o.R_WO.x(),       o.R_WO.y(),      o.R_WO.z(), o.dimensions.x(),
+                              o.dimensions.y(), o.dimensions.z()};
+    for (double x : numbers) {
+      std::snprintf(buffer, sizeof buffer, " %a", x);
+      text += buffer;
+    }
+  }
+  for (const auto& [key, n] : sampled.rejections.by_culprit) {
+    text += " " + std::string(lang::RejectionKindName(key.first)) + "/" + key.second + "=" +
+            std::to_string(n);
+  }
+  return text;
 }
 
 // The two-sample Kolmogorov-Smirnov statistic: the largest gap between the empirical
