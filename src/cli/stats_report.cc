@@ -81,18 +81,32 @@ std::string FormatGibbs(const SamplingStats& stats) {
 
 std::string FormatOverview(const SamplingStats& stats) {
   const auto& s = stats.summary;
+  if (stats.gibbs) {
+    // A Gibbs scene is not one accepted attempt among several: it takes a sweep of moves,
+    // each run of the program a try of one move.
+    return fmt::format(
+               "{}: {} from seed {}, {} sampling with --sampler gibbs, {}\n\n"
+               "  program runs     {:.2f} a scene ({} in all, {} of them accepted moves), {} max\n"
+               "  time per scene   {}  ({:.0f} scenes/s; {} in all)\n",
+               stats.file, FormatCount(s.scenes, "scene"), stats.seed,
+               stats.naive ? "naive" : "region", FormatCount(stats.threads, "thread"),
+               Ratio(s.attempts, s.scenes), s.attempts,
+               Percent(s.attempts - s.rejections.total, s.attempts), stats.max_attempts_per_scene,
+               FormatSeconds(Ratio(stats.seconds, s.scenes)), Ratio(s.scenes, stats.seconds),
+               FormatSeconds(stats.seconds)) +
+           FormatGibbs(stats);
+  }
   return fmt::format(
-             "{}: {} from seed {}, {} sampling, {}\n\n"
-             "  acceptance rate  {}  ({} in {})\n"
-             "  attempts/scene   {:.2f} mean, {} max\n"
-             "  time per scene   {}  ({:.0f} scenes/s; {} in all)\n",
-             stats.file, FormatCount(s.scenes, "scene"), stats.seed,
-             stats.naive ? "naive" : "region", FormatCount(stats.threads, "thread"),
-             Percent(s.scenes, s.attempts), FormatCount(s.scenes, "scene"),
-             FormatCount(s.attempts, "attempt"), Ratio(s.attempts, s.scenes),
-             stats.max_attempts_per_scene, FormatSeconds(Ratio(stats.seconds, s.scenes)),
-             Ratio(s.scenes, stats.seconds), FormatSeconds(stats.seconds)) +
-         FormatGibbs(stats);
+      "{}: {} from seed {}, {} sampling, {}\n\n"
+      "  acceptance rate  {}  ({} in {})\n"
+      "  attempts/scene   {:.2f} mean, {} max\n"
+      "  time per scene   {}  ({:.0f} scenes/s; {} in all)\n",
+      stats.file, FormatCount(s.scenes, "scene"), stats.seed, stats.naive ? "naive" : "region",
+      FormatCount(stats.threads, "thread"), Percent(s.scenes, s.attempts),
+      FormatCount(s.scenes, "scene"), FormatCount(s.attempts, "attempt"),
+      Ratio(s.attempts, s.scenes), stats.max_attempts_per_scene,
+      FormatSeconds(Ratio(stats.seconds, s.scenes)), Ratio(s.scenes, stats.seconds),
+      FormatSeconds(stats.seconds));
 }
 
 std::string FormatReasonTable(const sampling::BatchSummary& s) {
@@ -190,7 +204,9 @@ std::string FormatStatsJson(const SamplingStats& stats, const lang::SourceManage
         {"effective_scenes", g.CalcEffectiveScenes(s.scenes)},
         {"effective_scenes_per_second", Ratio(g.CalcEffectiveScenes(s.scenes), stats.seconds)},
         {"autocorrelation_sweeps", g.tau_sweeps},
-        {"autocorrelation_statistic", g.tau_statistic},
+        {"autocorrelation_statistics", g.statistics},
+        {"slowest_statistic", g.tau_statistic},
+        {"slowest_statistic_sweeps", g.tau_worst_sweeps},
         {"autocorrelation_scenes", g.tau_scenes},
         {"thin_sweeps", g.thin_sweeps},
         {"burn_in_sweeps", g.burn_in_sweeps},

@@ -261,11 +261,17 @@ const GibbsPlan& GibbsRequest::Plan(const lang::CompiledProgram& program,
   auto cache = lang::MakeRunCache();
   ChainEngine pilot(program, options, cache.get(), kPilotSeed, kPilotChain);
   pilot.Start();
-  const int64_t warm = std::max<int64_t>(10, settings_.pilot_sweeps / 4);
+  // A sweep costs about one run per block, and averaging over more statistics needs fewer
+  // sweeps: kPilotBlockSweeps block redraws in all, within [kMinPilotSweeps, pilot_sweeps].
+  constexpr int64_t kPilotBlockSweeps = 4000, kMinPilotSweeps = 50;
+  const int64_t sweeps = std::clamp<int64_t>(kPilotBlockSweeps / std::max(1, pilot.blocks()),
+                                             std::min(kMinPilotSweeps, settings_.pilot_sweeps),
+                                             settings_.pilot_sweeps);
+  const int64_t warm = std::max<int64_t>(10, sweeps / 4);
   for (int64_t s = 0; s < warm; ++s) pilot.Sweep(settings_.max_block_tries);
   // Statistics per sweep: every object's position and every coordinate.
   std::map<std::string, std::vector<double>> series;
-  for (int64_t s = 0; s < settings_.pilot_sweeps; ++s) {
+  for (int64_t s = 0; s < sweeps; ++s) {
     pilot.Sweep(settings_.max_block_tries);
     const lang::Scene& scene = pilot.scene();
     for (size_t i = 0; i < scene.objects.size(); ++i) {
@@ -283,13 +289,13 @@ const GibbsPlan& GibbsRequest::Plan(const lang::CompiledProgram& program,
   GibbsPlan plan;
   plan.dimension = static_cast<int>(pilot.point().size());
   plan.blocks = pilot.blocks();
-  plan.pilot_sweeps = settings_.pilot_sweeps;
+  plan.pilot_sweeps = sweeps;
   plan.pilot_runs = pilot.runs();
   plan.scenes_per_chain = std::max<int64_t>(1, settings_.scenes_per_chain);
   // The chain's autocorrelation time from the autocorrelation function averaged over every
   // statistic that varies (one statistic's estimate from a short pilot is noisy, and the
   // largest of hundreds of them mostly measures the noise); the slowest statistic is kept too.
-  const size_t max_lag = static_cast<size_t>(settings_.pilot_sweeps / 4);
+  const size_t max_lag = static_cast<size_t>(sweeps / 4);
   std::vector<double> mean_rho;
   int varying = 0;
   for (const auto& [name, values] : series) {

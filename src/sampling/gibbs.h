@@ -37,19 +37,19 @@ struct GibbsPlan {
   int64_t burn_in_sweeps = 0;   // sweeps from the start before a chain's first scene
   int64_t thin_sweeps = 1;      // sweeps between a chain's scenes
   double tau_scenes = 1;        // the autocorrelation time between consecutive scenes
-  int64_t scenes_per_chain = 32;
+  int64_t scenes_per_chain = 64;
 
   /// The effective sample size of `scenes` consecutive scenes: scenes / tau_scenes.
   double CalcEffectiveScenes(int64_t scenes) const;
 };
 
 struct GibbsSettings {
-  int64_t scenes_per_chain = 32;
+  int64_t scenes_per_chain = 64;
   /// Negative: from the pilot (10 autocorrelation times, at least 20). 0: none, so a chain's
   /// first scene is its start, a sequential placement (not the program's law: for tests).
   int64_t burn_in_sweeps = -1;
-  int64_t thin_sweeps = -1;  // negative: from the pilot (one autocorrelation time rounded down)
-  int64_t pilot_sweeps = 200;
+  int64_t thin_sweeps = -1;    // negative: from the pilot (one autocorrelation time rounded down)
+  int64_t pilot_sweeps = 200;  // at most; fewer for many blocks (4,000 block redraws, at least 50)
   /// Tries to redraw one block before the move keeps the old values (a move that keeps them
   /// still leaves the law invariant).
   int64_t max_block_tries = 1000;
