@@ -4,7 +4,8 @@
 // same in every scene — literals, built-ins, `math`, `self`, and module names that are fixed
 // (MarkFixedPlacements) and bound exactly once, at the top level — and it creates nothing and
 // calls no user function; its specifiers are among those that only place the object (not
-// `visible from` or `reachable by`, which register checks for later). Sites inside functions
+// `visible from` or `reachable by`, which register checks for later), and the module's
+// `workspace`, which placement reads unnamed, is fixed too. Sites inside functions
 // never qualify: a local may shadow a module name. The Gibbs sampler (sampling/gibbs.h) runs a
 // program many times at points that differ in one object's numbers; such objects are then
 // copied from the previous run instead of made again (RunOptions::reuse_objects).
@@ -119,7 +120,8 @@ class OwnDrawAnalysis {
     auto it = program_.plans.find(&create);
     if (it == program_.plans.end()) return;
     ObjectPlan& plan = it->second;
-    bool pure = true;
+    // Placement reads the module's `workspace` without naming it (it bounds the region).
+    bool pure = !bound_[m].count("workspace") || stable_[m].count("workspace");
     for (const Specifier& s : create.specifiers) {
       pure = pure && static_cast<int>(s.kind) <= static_cast<int>(SpecifierKind::kFacingToward);
       for (const ExprPtr* e : {&s.target, &s.distance, &s.from}) {

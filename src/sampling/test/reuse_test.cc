@@ -59,6 +59,14 @@ TEST(ReuseTest, OnlySitesThatReadFixedNamesAreOwnDraws) {
     ASSERT_TRUE(flags.count(line)) << "no site on line " << line;
     EXPECT_EQ(flags.at(line), own) << "line " << line;
   }
+  // A workspace drawn anew in every scene bounds every position region: no site qualifies.
+  const auto moving = CompileOrDie(
+      "from model import *\n"
+      "workspace = Cuboid(V3D((0, 0.5), 0, 1.5), V3D(0, 0, 0), 5, 5, 3)\n"
+      "bin = Table on V3D(0, 0, 0), with width 0.5, with length 0.4\n"
+      "Cube completely on bin, with yaw Range(0, 6)\n");
+  ASSERT_TRUE(moving);
+  EXPECT_FALSE(OwnDrawFlags(*moving).at(4));
 }
 
 TEST(ReuseTest, ReusedObjectsGiveTheSameChains) {
