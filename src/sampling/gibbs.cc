@@ -116,7 +116,19 @@ class ChainEngine {
       Redraw(block);
     }
     if (rejections_.total == 0) ThrowUnsupported("its number of draws keeps growing");
-    ThrowSamplingFailure(rejections_, runs_, 0, lang::RejectionKind::kUnstable);
+    try {
+      ThrowSamplingFailure(rejections_, runs_, 0, lang::RejectionKind::kUnstable);
+    } catch (const lang::ScenarioError& error) {
+      // The same counts and culprit, said of the chain's start.
+      lang::Diagnostic d = error.diagnostic();
+      const std::string generic = "no valid scene after " + std::to_string(runs_) + " attempts";
+      if (d.message.rfind(generic, 0) == 0) {
+        d.message = "--sampler gibbs found no starting scene for its chain in " +
+                    std::to_string(runs_) + " program runs (each object redrawn until it fits " +
+                    "beside those before it)" + d.message.substr(generic.size());
+      }
+      throw lang::ScenarioError(std::move(d));
+    }
   }
 
   // One systematic scan: every block in turn from its exact conditional (uniform on its cube,

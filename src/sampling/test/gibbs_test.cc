@@ -263,6 +263,24 @@ TEST(GibbsTest, ProgramsItCannotSampleAreRefused) {
   SampleOptions at_points = Gibbs();
   at_points.points = &point;
   expect_refused(*bin, at_points, "cannot draw scenes at given points");
+
+  // Two cubes that never fit side by side: the chain finds no start, and says so with the
+  // rejection sampler's counts and culprit.
+  const auto cramped = CompileOrDie(BinProgram(2, "Cube", "0.07, with length 0.07"));
+  SampleOptions few = Gibbs();
+  few.max_attempts = 300;
+  try {
+    SampleScene(*cramped, 0, 0, few);
+    ADD_FAILURE() << "a start was found";
+  } catch (const lang::ScenarioError& e) {
+    EXPECT_EQ(e.diagnostic().id, "sampling-failed");
+    EXPECT_NE(
+        e.diagnostic().message.find("found no starting scene for its chain in 300 program runs"),
+        std::string::npos)
+        << e.diagnostic().message;
+    EXPECT_NE(e.diagnostic().message.find("collision"), std::string::npos)
+        << e.diagnostic().message;
+  }
 }
 
 }  // namespace
