@@ -16,7 +16,6 @@
 #include "lang/resolve_internal.h"
 
 namespace prs::lang::internal {
-
 namespace {
 
 class OwnDrawAnalysis {
@@ -30,8 +29,9 @@ class OwnDrawAnalysis {
   void Run() {
     for (size_t m = 0; m < program_.modules.size(); ++m) FindStableNames(static_cast<int>(m));
     for (size_t m = 0; m < program_.modules.size(); ++m) {
-      for (const StmtPtr& stmt : program_.modules[m]->ast.body)
+      for (const StmtPtr& stmt : program_.modules[m]->ast.body) {
         VisitStmt(*stmt, static_cast<int>(m));
+      }
     }
   }
 
