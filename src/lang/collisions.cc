@@ -43,43 +43,48 @@ void ForEachCell(const SceneObject& o, double reach, Visit visit) {
 void Interpreter::CheckCollisions(int index) {
   const SceneObject& o = scene_.objects[index];
   if (!o.cls->has_box || o.allow_collisions) return;
-  std::vector<int> candidates;
-  FindCollisionCandidates(index, candidates);
-  for (int other : candidates) {
-    if (DoObjectsOverlap(index, other)) RejectCollision(index, other);
-  }
-  AddToCollisionGrid(index);
-}
-
-void Interpreter::FindCollisionCandidates(int index, std::vector<int>& candidates) {
   CollisionGrid& grid = collision_grid_;
-  const SceneObject& o = scene_.objects[index];
+  if (!grid.built && grid.collidable >= std::max(1, options_.collision_grid_from)) BuildGrid(index);
   const double reach = CalcReach(o);
-  if (grid.objects.size() < static_cast<size_t>(std::max(1, options_.collision_grid_from)) ||
-      !IsGridded(o, reach)) {
-    candidates = grid.objects;
-  } else {
-    if (!grid.built) {  // file the objects so far in cells
-      grid.built = true;
-      std::vector<int> filed = std::move(grid.objects);
-      grid.objects.clear();
-      for (int k : filed) AddToCollisionGrid(k);
-    }
+  if (grid.built && IsGridded(o, reach)) {
+    std::vector<int>& candidates = grid.candidates;
     candidates = grid.large;
     ForEachCell(o, reach, [&](uint64_t key) {
       auto it = grid.cells.find(key);
-      if (it != grid.cells.end())
+      if (it != grid.cells.end()) {
         candidates.insert(candidates.end(), it->second.begin(), it->second.end());
+      }
     });
+    std::sort(candidates.begin(), candidates.end());
+    candidates.erase(std::unique(candidates.begin(), candidates.end()), candidates.end());
+    for (int other : candidates) {
+      if (other != index && DoObjectsOverlap(index, other)) RejectCollision(index, other);
+    }
+  } else {
+    for (int other = 0; other < static_cast<int>(scene_.objects.size()); ++other) {
+      if (other != index && IsCollidable(other) && DoObjectsOverlap(index, other)) {
+        RejectCollision(index, other);
+      }
+    }
   }
-  std::sort(candidates.begin(), candidates.end());
-  candidates.erase(std::unique(candidates.begin(), candidates.end()), candidates.end());
+  ++grid.collidable;
+  if (grid.built) AddToCollisionGrid(index);
+}
+
+bool Interpreter::IsCollidable(int index) const {
+  const SceneObject& o = scene_.objects[index];
+  return completed_[index] && o.cls->has_box && !o.allow_collisions;
+}
+
+void Interpreter::BuildGrid(int checking) {
+  collision_grid_.built = true;
+  for (int k = 0; k < static_cast<int>(scene_.objects.size()); ++k) {
+    if (k != checking && IsCollidable(k)) AddToCollisionGrid(k);
+  }
 }
 
 void Interpreter::AddToCollisionGrid(int index) {
   CollisionGrid& grid = collision_grid_;
-  grid.objects.push_back(index);
-  if (!grid.built) return;
   const SceneObject& o = scene_.objects[index];
   const double reach = CalcReach(o);
   if (!IsGridded(o, reach)) {

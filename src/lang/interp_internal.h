@@ -210,6 +210,7 @@ class Interpreter {
     int64_t draws_before = 0;
     std::optional<geometry::Rng> stream_before;
   };
+  bool CanReuse(const ObjectPlan& plan) const;
   ReuseMark MarkReuse(const ObjectPlan& plan) const;
   /// Keeps the object just made (before its scene checks) when its draws all came from the
   /// coordinates.
@@ -223,10 +224,11 @@ class Interpreter {
   void FinishObject(int index, SourceSpan span);
   // --- collisions (collisions.cc): each object against those made before it ---
   void CheckCollisions(int index);
-  /// The objects CheckCollisions tests `index` against, in index order: every completed
-  /// object with a box that allows no collision, or, past RunOptions::collision_grid_from of
-  /// them, those the grid finds near it (a superset of those whose bounding balls meet).
-  void FindCollisionCandidates(int index, std::vector<int>& candidates);
+  /// Completed, with a box, not allowing collisions: what CheckCollisions tests against.
+  bool IsCollidable(int index) const;
+  /// Files every collidable object so far but `checking` in the grid; later ones are filed as
+  /// they come.
+  void BuildGrid(int checking);
   void AddToCollisionGrid(int index);
   [[noreturn]] void RejectCollision(int index, int other);
   void CheckWorkspace();
@@ -367,10 +369,11 @@ class Interpreter {
   /// The collision checks' broad phase: completed collidable objects, by the cells of a
   /// horizontal grid their bounding balls' squares overlap (collisions.cc).
   struct CollisionGrid {
-    std::vector<int> objects;  // every one, in index order
+    int collidable = 0;  // collidable objects checked so far
+    bool built = false;  // from RunOptions::collision_grid_from of them on
     std::unordered_map<uint64_t, std::vector<int>> cells;
-    std::vector<int> large;  // balls wider than a cell: tested against every object
-    bool built = false;      // cells and large hold `objects`
+    std::vector<int> large;       // balls wider than a cell: tested against every object
+    std::vector<int> candidates;  // scratch for one object's tests
   };
   CollisionGrid collision_grid_;
   std::vector<ModuleEnv> module_envs_;

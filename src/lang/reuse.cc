@@ -21,11 +21,15 @@ bool IsPlainValue(const Value& value) {
 
 }  // namespace
 
+bool Interpreter::CanReuse(const ObjectPlan& plan) const {
+  const CoordinateInput& in = options_.coordinates;
+  return options_.reuse_objects && plan.own_draws_only && options_.cache && in.values && !in.log &&
+         !options_.record_regions && !coordinates_done_;
+}
+
 Interpreter::ReuseMark Interpreter::MarkReuse(const ObjectPlan& plan) const {
   ReuseMark mark;
-  const CoordinateInput& in = options_.coordinates;
-  mark.active = options_.reuse_objects && plan.own_draws_only && options_.cache && in.values &&
-                !in.log && !options_.record_regions && !coordinates_done_;
+  mark.active = CanReuse(plan);
   if (!mark.active) return mark;
   mark.first_coordinate = next_coordinate_;
   mark.draws_before = draws_;
@@ -47,8 +51,7 @@ void Interpreter::KeepForReuse(const ObjectPlan& plan, int index, const ReuseMar
 }
 
 std::optional<Value> Interpreter::ReuseObject(const ObjectPlan& plan, int index, SourceSpan span) {
-  const ReuseMark mark = MarkReuse(plan);
-  if (!mark.active) return std::nullopt;
+  if (!CanReuse(plan)) return std::nullopt;
   auto it = options_.cache->reusable.find({&plan, index});
   if (it == options_.cache->reusable.end()) return std::nullopt;
   const RunCache::ReusableObject& kept = it->second;
