@@ -119,17 +119,18 @@ class SceneWriterRun {
 
   sampling::BatchCallbacks MakeCallbacks() {
     sampling::BatchCallbacks callbacks;
-    // Formatting is per scene and independent, so it runs on the workers.
-    // The objects are freed there too: only the line and the counts travel to the writer,
-    // and memory is not freed across threads.
-    callbacks.prepare = [](sampling::BatchScene& scene) {
-      scene.rendered = output::FormatSceneJson(scene.sampled);
+    // Formatting is per scene and independent, so it runs on the workers, into one buffer
+    // per run of scenes. The objects are freed there too: only the text and the counts travel
+    // to the writer.
+    callbacks.format = [](sampling::BatchScene& scene, std::string& text) {
+      output::AppendSceneJson(scene.sampled, text);
+      text += '\n';
       scene.sampled.scene = {};
     };
-    callbacks.consume = [this](sampling::BatchScene&& scene) {
-      writer_.AddLine(scene.rendered);
-      progress_.Update(++done_);
+    callbacks.write = [this](std::string_view text, int64_t count) {
+      writer_.AddLines(text, count);
     };
+    callbacks.consume = [this](sampling::BatchScene&&) { progress_.Update(++done_); };
     return callbacks;
   }
 

@@ -63,6 +63,21 @@ void LineWriter::AddLine(std::string_view line) {
   }
 }
 
+void LineWriter::AddLines(std::string_view lines, int64_t count) {
+  if (buffer_.empty() && lines.size() >= kFlushBytes / 4 && fd_ >= 0) {
+    WriteAll(lines);
+    lines_written_ += count;
+    last_write_ = std::chrono::steady_clock::now();
+    return;
+  }
+  buffer_.append(lines);
+  buffered_lines_ += count;
+  if (buffer_.size() >= kFlushBytes ||
+      std::chrono::steady_clock::now() - last_write_ >= kFlushInterval) {
+    Flush();
+  }
+}
+
 void LineWriter::Flush() {
   last_write_ = std::chrono::steady_clock::now();
   if (buffer_.empty() || fd_ < 0) return;

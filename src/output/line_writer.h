@@ -29,6 +29,9 @@ class LineWriter {
   /// Appends `line` and a newline. The buffer is written once it holds 64 KiB, or when the
   /// last write is 200 ms old, so a slow stream still shows up promptly.
   void AddLine(std::string_view line);
+  /// Appends `lines`, `count` whole lines each ending in a newline (the text of a run of
+  /// scenes). Text of 16 KiB or more is written at once when nothing is buffered, uncopied.
+  void AddLines(std::string_view lines, int64_t count);
   /// Writes every buffered line now, with one write(2) (repeated only for a short write).
   /// Throws std::runtime_error naming the file and the reason on an I/O error.
   void Flush();

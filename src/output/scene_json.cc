@@ -12,8 +12,8 @@
 #include <charconv>
 #include <cmath>
 #include <cstdint>
-#include <unordered_map>
 #include <nlohmann/json.hpp>
+#include <unordered_map>
 
 #include "geometry/rotation.h"
 
@@ -60,7 +60,7 @@ char* WriteShortest(double x, char* out) {
     return out;
   }
   const int point = decimal.exponent + size;  // digits before the decimal point
-  if (decimal.exponent >= 0) {  // 1234e5 -> 123400000
+  if (decimal.exponent >= 0) {                // 1234e5 -> 123400000
     out = std::copy(first, first + size, out);
     return std::fill_n(out, decimal.exponent, '0');
   }
@@ -88,8 +88,8 @@ void AppendNumber(double x, Out& out) {
   if (x == std::trunc(x) && std::abs(x) < 1e15) {
     if (std::signbit(x)) out += '-';
     char digits[24];
-    const auto end = std::to_chars(digits, digits + sizeof digits,
-                                   static_cast<int64_t>(std::abs(x))).ptr;
+    const auto end =
+        std::to_chars(digits, digits + sizeof digits, static_cast<int64_t>(std::abs(x))).ptr;
     out.append(digits, end);
     out += ".0";
     return;
@@ -99,8 +99,8 @@ void AppendNumber(double x, Out& out) {
   out.append(digits, end);
   // A number with a fractional part always shows a '.' or an exponent; only a whole number
   // too large for the branch above may lack both.
-  if (x == std::trunc(x) && std::string_view(digits, end - digits).find_first_of(".e") ==
-                                std::string_view::npos) {
+  if (x == std::trunc(x) &&
+      std::string_view(digits, end - digits).find_first_of(".e") == std::string_view::npos) {
     out += ".0";
   }
 }
@@ -329,6 +329,11 @@ bool IsCoreProperty(std::string_view name) {
 std::string FormatSceneJson(const sampling::SampledScene& sampled) {
   std::string out;
   out.reserve(256 + 512 * sampled.scene.objects.size());
+  AppendSceneJson(sampled, out);
+  return out;
+}
+
+void AppendSceneJson(const sampling::SampledScene& sampled, std::string& out) {
   AppendHeader(sampled, out);
   AppendParams(sampled.scene, out);
   out += ",\"objects\":[";
@@ -337,7 +342,6 @@ std::string FormatSceneJson(const sampling::SampledScene& sampled) {
     AppendObject(sampled.scene.objects[i], out);
   }
   out += "]}";
-  return out;
 }
 
 }  // namespace prs::output

@@ -10,6 +10,8 @@ namespace prs::output {
 
 /// Renders one sampled scene as a single line of JSON (no trailing newline).
 std::string FormatSceneJson(const sampling::SampledScene& sampled);
+/// Appends the same line to `out`.
+void AppendSceneJson(const sampling::SampledScene& sampled, std::string& out);
 
 /// Writes a finite double exactly as fmt's "{}" does (the shortest digits that read back as
 /// the same double) and returns the end; at most 24 characters. The scene writer's numbers.

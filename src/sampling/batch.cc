@@ -1,19 +1,18 @@
-// The parallel batch sampler: workers claim runs of scene indices in increasing order, park
-// finished scenes in a ring of slots, and the calling thread takes them out in index order.
-// No scene is claimed more than `window` scenes ahead of the consumer, which bounds memory.
+// The parallel batch sampler: workers claim runs of scene indices in increasing order and hand
+// each finished run over whole (sampling/run_queue.h); the calling thread takes the runs out
+// in index order. No scene is claimed more than `window` scenes ahead of the consumer, which
+// bounds memory.
 #include "sampling/batch.h"
 
 #include <algorithm>
-#include <chrono>
-#include <condition_variable>
 #include <exception>
 #include <limits>
-#include <mutex>
 #include <optional>
 #include <thread>
 #include <vector>
 
 #include "sampling/gibbs.h"
+#include "sampling/run_queue.h"
 
 namespace prs::sampling {
 
@@ -23,9 +22,13 @@ void BatchSummary::Add(const SampledScene& sampled) {
   rejections.Merge(sampled.rejections);
 }
 
-namespace {
+void BatchSummary::Merge(const BatchSummary& later) {
+  scenes += later.scenes;
+  attempts += later.attempts;
+  rejections.Merge(later.rejections);
+}
 
-constexpr auto kCancelPollInterval = std::chrono::milliseconds(50);
+namespace {
 
 bool IsCancelled(const BatchOptions& options) {
   return options.cancel && options.cancel->load(std::memory_order_relaxed);
@@ -54,180 +57,79 @@ BatchSummary SampleOnCallingThread(const lang::CompiledProgram& program,
                                    const BatchOptions& options, const BatchCallbacks& callbacks) {
   SceneSampler sampler(program, options.sample);
   BatchSummary summary;
+  std::string text;
   for (int64_t offset = 0; offset < options.count; ++offset) {
     if (IsCancelled(options)) throw BatchCancelled();
     BatchScene item;
     item.sampled = sampler.Sample(options.seed, options.start + static_cast<uint64_t>(offset));
     if (callbacks.prepare) callbacks.prepare(item);
+    if (callbacks.format) {
+      text.clear();
+      callbacks.format(item, text);
+      callbacks.write(text, 1);
+    }
     summary.Add(item.sampled);
     if (callbacks.consume) callbacks.consume(std::move(item));
   }
   return summary;
 }
 
-// A run of consecutive offsets [begin, end) claimed by one worker.
-struct OffsetRange {
-  int64_t begin;
-  int64_t end;
-};
-
-// The hand-over between workers and the consumer. Offsets count from the batch's first scene.
-// Claims go out in increasing order, so when offset f fails every offset below f has been
-// claimed and will finish or fail: the lowest failure is found without waiting for the rest.
-// Workers claim a few scenes at a time and the consumer takes every ready scene at once, so
-// the lock and the wake-ups are paid per run of scenes, not per scene.
-class ReorderQueue {
- public:
-  /// With `aligned`, claims end where (offset + phase) is a multiple of `chunk` (a Gibbs
-  /// chain's scenes are claimed together: sampling/gibbs.h).
-  ReorderQueue(int64_t count, int64_t window, int64_t chunk, bool aligned = false,
-               int64_t phase = 0)
-      : slots_(window), count_(count), chunk_(chunk), aligned_(aligned), phase_(phase) {}
-
-  /// Worker: the next offsets to sample (at most `chunk`, as many as the window has room
-  /// for), waiting while it is full; nullopt when nothing is left to claim (done, stopping,
-  /// or past a failed offset).
-  std::optional<OffsetRange> Claim() {
-    std::unique_lock lock(mutex_);
-    slot_free_.wait(lock, [&] { return IsClaimOver() || HasFreeSlot(); });
-    if (IsClaimOver()) return std::nullopt;
-    const int64_t chunk = aligned_ ? chunk_ - (next_claim_ + phase_) % chunk_ : chunk_;
-    const int64_t end =
-        std::min({next_claim_ + chunk, next_take_ + Window(), std::min(count_, failed_offset_)});
-    const OffsetRange range{next_claim_, end};
-    next_claim_ = end;
-    return range;
-  }
-
-  /// Worker: parks finished scenes for offsets begin, begin + 1, ...
-  void Finish(int64_t begin, std::vector<BatchScene>& scenes) {
-    if (scenes.empty()) return;
-    bool is_awaited;
-    {
-      std::lock_guard lock(mutex_);
-      for (size_t i = 0; i < scenes.size(); ++i) {
-        slots_[(begin + int64_t(i)) % Window()] = std::move(scenes[i]);
-      }
-      is_awaited = begin == next_take_;
-    }
-    scenes.clear();
-    if (is_awaited) scene_ready_.notify_one();
-  }
-
-  /// Worker: records that `offset` failed; the lowest failed offset wins.
-  void Fail(int64_t offset, std::exception_ptr error) {
-    {
-      std::lock_guard lock(mutex_);
-      if (offset < failed_offset_) {
-        failed_offset_ = offset;
-        failure_ = std::move(error);
-      }
-    }
-    scene_ready_.notify_one();
-    slot_free_.notify_all();  // workers waiting for a slot past the failure can quit
-  }
-
-  /// Consumer: releases the scenes before `offset` (consumed), waits for scene `offset`, then
-  /// moves it and the finished scenes right after it into `ready`. Their slots stay reserved
-  /// until the next call, so at most `window` scenes exist at a time. Rethrows the failure of
-  /// `offset`, or throws BatchCancelled once `cancel` is set.
-  void TakeReady(int64_t offset, std::vector<BatchScene>& ready, const std::atomic<bool>* cancel,
-                 const std::function<void()>& tick) {
-    std::unique_lock lock(mutex_);
-    if (offset > next_take_) {
-      next_take_ = offset;
-      slot_free_.notify_all();
-    }
-    auto is_decided = [&] {
-      return slots_[offset % Window()].has_value() || failed_offset_ <= offset;
-    };
-    while (true) {
-      if (cancel && cancel->load(std::memory_order_relaxed)) throw BatchCancelled();
-      if (is_decided()) break;
-      if (!scene_ready_.wait_for(lock, kCancelPollInterval, is_decided) && tick) {
-        lock.unlock();  // the tick may take a while (a terminal write): workers go on
-        tick();
-        lock.lock();
-      }
-    }
-    if (!slots_[offset % Window()]) std::rethrow_exception(failure_);
-    for (int64_t next = offset; next < count_ && next < offset + Window(); ++next) {
-      std::optional<BatchScene>& slot = slots_[next % Window()];
-      if (!slot) break;
-      ready.push_back(std::move(*slot));
-      slot.reset();
-    }
-  }
-
-  /// Tells every worker to stop claiming; their current scenes still finish.
-  void Stop() {
-    {
-      std::lock_guard lock(mutex_);
-      stopping_ = true;
-    }
-    slot_free_.notify_all();
-  }
-
- private:
-  int64_t Window() const { return static_cast<int64_t>(slots_.size()); }
-  bool HasFreeSlot() const { return next_claim_ < next_take_ + Window(); }
-  bool IsClaimOver() const { return stopping_ || next_claim_ >= std::min(count_, failed_offset_); }
-
-  std::mutex mutex_;
-  std::condition_variable scene_ready_;  // the consumer waits here
-  std::condition_variable slot_free_;    // workers wait here
-  std::vector<std::optional<BatchScene>> slots_;
-  const int64_t count_;
-  const int64_t chunk_;
-  const bool aligned_;
-  const int64_t phase_;
-  int64_t next_claim_ = 0;
-  int64_t next_take_ = 0;  // offsets below it are consumed; their slots are free
-  int64_t failed_offset_ = std::numeric_limits<int64_t>::max();
-  std::exception_ptr failure_;
-  bool stopping_ = false;
-};
-
-// A worker: samples claimed runs until none is left. A failure ends its run (the scenes after
-// it are not needed); every error, even from building the sampler, is charged to the offset
-// being sampled, so the consumer reports it in order.
-void RunWorker(const lang::CompiledProgram& program, const BatchOptions& options,
-               const BatchCallbacks& callbacks, ReorderQueue& queue) {
+// A worker: samples claimed runs until none is left, formatting each run's text into one
+// buffer. A failure ends its run (the scenes after it are not needed); every error, even from
+// building the sampler, is charged to the offset being sampled, so the consumer reports it in
+// order. The runs the consumer gave back are reused for later claims (their buffers keep
+// their size), and what is left of their scenes is freed here, on the thread that allocated it.
+void RunWorker(int worker, const lang::CompiledProgram& program, const BatchOptions& options,
+               const BatchCallbacks& callbacks, internal::RunQueue& queue) {
   std::optional<SceneSampler> sampler;
-  std::vector<BatchScene> finished;
-  while (const std::optional<OffsetRange> range = queue.Claim()) {
-    for (int64_t offset = range->begin; offset < range->end; ++offset) {
+  std::vector<internal::SceneRun> spent;
+  while (const std::optional<internal::OffsetRange> range = queue.Claim(worker, spent)) {
+    internal::SceneRun run;
+    if (!spent.empty()) {
+      run = std::move(spent.back());
+      spent.pop_back();
+    }
+    run.scenes.clear();
+    run.text.clear();
+    run.summary = {};
+    run.begin = range->begin;
+    run.worker = worker;
+    bool failed = false;
+    for (int64_t offset = range->begin; offset < range->end && !failed; ++offset) {
+      BatchScene& item = run.scenes.emplace_back();
+      const size_t text_size = run.text.size();
       try {
         if (!sampler) sampler.emplace(program, options.sample);
-        BatchScene item;
         item.sampled = sampler->Sample(options.seed, options.start + static_cast<uint64_t>(offset));
         if (callbacks.prepare) callbacks.prepare(item);
-        finished.push_back(std::move(item));
+        if (callbacks.format) callbacks.format(item, run.text);
+        run.summary.Add(item.sampled);
       } catch (...) {
-        queue.Finish(range->begin, finished);
+        run.scenes.pop_back();
+        run.text.resize(text_size);
         queue.Fail(offset, std::current_exception());
-        break;
+        failed = true;
       }
     }
-    queue.Finish(range->begin, finished);
+    queue.Finish(std::move(run));
   }
 }
 
 // Stops the queue when the consumer leaves, normally or by an exception; declared after the
 // worker threads so that it runs before they are joined.
 struct StopQueueOnExit {
-  ReorderQueue& queue;
+  internal::RunQueue& queue;
   ~StopQueueOnExit() { queue.Stop(); }
 };
 
 // Small batches are claimed one scene at a time so that every thread gets a share; large ones
-// in runs of up to 16, which is plenty to amortise the lock.
+// in runs of up to 64, which is plenty to amortise the lock and the hand-over.
 // Scenes a worker claims at once. A worker publishes its claim only when it has sampled all of
 // it, so a claim must leave room in the window for the other workers' claims: at most half a
 // thread's share of the window (with the harness's window of 4 per thread, 2 episodes; a chunk
 // as large as the window made one worker hold it all while the others waited).
 int64_t ChooseChunk(int64_t count, int threads, int window_per_thread) {
-  const int64_t max_chunk = std::clamp<int64_t>(window_per_thread / 2, 1, 16);
+  const int64_t max_chunk = std::clamp<int64_t>(window_per_thread / 2, 1, 64);
   return std::clamp<int64_t>(count / (int64_t{threads} * 16), 1, max_chunk);
 }
 
@@ -243,24 +145,31 @@ BatchSummary SampleOnWorkers(const lang::CompiledProgram& program, const BatchOp
     window_per_thread = std::max(window_per_thread, 2 * chunk);
     phase = static_cast<int64_t>(options.start % static_cast<uint64_t>(chunk));
   }
-  ReorderQueue queue(options.count, int64_t{threads} * window_per_thread, chunk,
-                     options.sample.gibbs != nullptr, phase);
+  internal::RunQueue queue(threads, options.count, int64_t{threads} * window_per_thread, chunk,
+                           options.sample.gibbs != nullptr, phase);
   BatchSummary summary;
   std::vector<std::jthread> workers;
   StopQueueOnExit stop_queue{queue};
   for (int t = 0; t < threads; ++t) {
-    workers.emplace_back([&] { RunWorker(program, options, callbacks, queue); });
+    workers.emplace_back([&, t] { RunWorker(t, program, options, callbacks, queue); });
   }
-  std::vector<BatchScene> ready;
+  std::vector<internal::SceneRun> ready;
   for (int64_t offset = 0; offset < options.count;) {
     queue.TakeReady(offset, ready, options.cancel, callbacks.tick);
-    for (BatchScene& item : ready) {
-      if (IsCancelled(options)) throw BatchCancelled();
-      summary.Add(item.sampled);
-      if (callbacks.consume) callbacks.consume(std::move(item));
-      ++offset;
+    for (internal::SceneRun& run : ready) {
+      // A run's text is written whole, so with `format` the cancel check is per run.
+      if (callbacks.format) {
+        if (IsCancelled(options)) throw BatchCancelled();
+        callbacks.write(run.text, static_cast<int64_t>(run.scenes.size()));
+      }
+      summary.Merge(run.summary);  // counted on the worker: no scene's counts cross threads
+      for (BatchScene& item : run.scenes) {
+        if (!callbacks.format && IsCancelled(options)) throw BatchCancelled();
+        if (callbacks.consume) callbacks.consume(std::move(item));
+        ++offset;
+      }
     }
-    ready.clear();
+    queue.GiveBack(ready);
   }
   return summary;
 }

@@ -8,6 +8,7 @@
 #include <functional>
 #include <stdexcept>
 #include <string>
+#include <string_view>
 
 #include "sampling/sampler.h"
 
@@ -20,7 +21,7 @@ struct BatchOptions {
   int64_t count = 0;   // number of scenes; start + count - 1 must not overflow uint64_t
   int threads = 1;     // worker threads; 1 samples on the calling thread
   /// Scenes that may be finished ahead of the next one to hand back, per thread. Bounds memory.
-  int window_per_thread = 32;
+  int window_per_thread = 256;
   /// Polled about every 50 ms and between scenes; once true, the batch stops (BatchCancelled).
   const std::atomic<bool>* cancel = nullptr;
 };
@@ -42,6 +43,16 @@ struct BatchCallbacks {
   /// (e.g. to redraw progress while one scene takes many attempts). When given, scenes are
   /// sampled on worker threads even for threads == 1, so the calling thread stays free.
   std::function<void()> tick = {};
+  /// Optional, for text written in index order (`prs sample`'s JSON Lines): runs on a worker
+  /// after `prepare` and appends the scene's text to `text`, the one buffer of the scenes the
+  /// worker claimed together; it may also drop what `consume` does not need. The calling
+  /// thread hands each such run's text to `write` at once, before `consume` gets its scenes
+  /// (so a cancel stops between runs), and no string is made, copied or freed per scene on
+  /// the calling thread.
+  std::function<void(BatchScene&, std::string& text)> format = {};
+  /// Required with `format`: runs on the calling thread, in index order, with the text of
+  /// `count` consecutive scenes.
+  std::function<void(std::string_view text, int64_t count)> write = {};
 };
 
 /// Totals over the scenes handed to `consume`.
@@ -51,6 +62,8 @@ struct BatchSummary {
   RejectionCounts rejections;
 
   void Add(const SampledScene& sampled);
+  /// Adds the totals of later scenes (kept rejection examples stay the earliest).
+  void Merge(const BatchSummary& later);
 };
 
 /// Thrown by SampleBatch when BatchOptions::cancel became true.

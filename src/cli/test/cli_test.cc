@@ -47,7 +47,9 @@ TEST_F(PrsTest, SampleSucceedsWithOneJsonScenePerLine) {
 
 TEST_F(PrsTest, SampleIsByteIdenticalForAnyThreadCount) {
   const std::string file = Write("req.prs", kRequirementProgram);
-  const std::vector<std::string> args = {"sample", file, "-I", Example(""), "-n", "40", "-s", "9"};
+  // 3,000 scenes: workers hand over runs of up to 64 scenes' text at once.
+  const std::vector<std::string> args = {"sample", file,   "-I", Example(""),
+                                         "-n",     "3000", "-s", "9"};
   auto run_with = [&](const char* threads) {
     std::vector<std::string> with = args;
     with.insert(with.end(), {"--threads", threads});
@@ -55,9 +57,14 @@ TEST_F(PrsTest, SampleIsByteIdenticalForAnyThreadCount) {
   };
   const Result one = run_with("1");
   ASSERT_EQ(one.exit_code, 0) << one.err;
-  EXPECT_EQ(SplitLines(one.out).size(), 40u);
+  EXPECT_EQ(SplitLines(one.out).size(), 3000u);
   EXPECT_EQ(run_with("2").out, one.out);
   EXPECT_EQ(run_with("4").out, one.out);
+  const std::string path = (dir_ / "scenes.jsonl").string();
+  std::vector<std::string> to_file = args;
+  to_file.insert(to_file.end(), {"--threads", "2", "-o", path});
+  ASSERT_EQ(Run(to_file).exit_code, 0);
+  EXPECT_EQ(ReadText(path), one.out);
 }
 
 TEST_F(PrsTest, SampleIsByteIdenticalForAnySplitOfTheRange) {
@@ -248,8 +255,8 @@ const char kDropProgram[] =
 
 TEST_F(PrsTest, StableKeepsTheScenesAtRestForAnyThreadCount) {
   const std::string file = Write("drop.prs", kDropProgram);
-  const std::vector<std::string> args = {"sample", file, "-I", Example(""), "-n", "20", "-s", "4",
-                                         "--stable"};
+  const std::vector<std::string> args = {"sample", file, "-I", Example(""), "-n",
+                                         "20",     "-s", "4",  "--stable"};
   const std::string output = RunOnOneAndTwoThreads(args);
   int rejected = 0;
   for (const std::string& line : SplitLines(output)) {
@@ -260,8 +267,8 @@ TEST_F(PrsTest, StableKeepsTheScenesAtRestForAnyThreadCount) {
     }
   }
   EXPECT_GT(rejected, 0);
-  const Result stats = Run({"stats", file, "-I", Example(""), "-n", "20", "-s", "4", "--stable",
-                            "--json"});
+  const Result stats =
+      Run({"stats", file, "-I", Example(""), "-n", "20", "-s", "4", "--stable", "--json"});
   ASSERT_EQ(stats.exit_code, 0) << stats.err;
   const json counts = json::parse(stats.out);
   EXPECT_EQ(counts["rejections"]["by_reason"]["unstable"], rejected);
@@ -271,9 +278,10 @@ TEST_F(PrsTest, StableKeepsTheScenesAtRestForAnyThreadCount) {
                             "--stable-move", "0.02", "--json"});
   ASSERT_EQ(loose.exit_code, 0) << loose.err;
   EXPECT_FALSE(json::parse(loose.out)["rejections"]["by_reason"].contains("unstable"));
-  for (const std::vector<std::string>& bad :
-       {std::vector<std::string>{"--stable=0"}, {"--stable=abc"}, {"--stable-move", "-1"},
-        {"--stable-turn", "0"}}) {
+  for (const std::vector<std::string>& bad : {std::vector<std::string>{"--stable=0"},
+                                              {"--stable=abc"},
+                                              {"--stable-move", "-1"},
+                                              {"--stable-turn", "0"}}) {
     std::vector<std::string> with = {"sample", file, "-I", Example("")};
     with.insert(with.end(), bad.begin(), bad.end());
     const Result r = Run(with);

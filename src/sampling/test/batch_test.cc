@@ -9,6 +9,7 @@
 #include <chrono>
 #include <cstdio>
 #include <string>
+#include <string_view>
 #include <thread>
 #include <vector>
 
@@ -250,6 +251,118 @@ TEST(BatchTest, RejectsBadArguments) {
   options.threads = 1;
   options.start = UINT64_MAX;
   EXPECT_THROW(SampleBatch(*program, options, {}), std::invalid_argument);
+}
+
+// `format` on the workers and `write` on the calling thread: the text is every scene's, in
+// index order, for any thread count; workers hand over runs of many scenes at once; `write`
+// comes before `consume` gets the run's scenes, and the counts add up.
+struct WrittenText {
+  std::string text;
+  int64_t lines = 0;
+  int64_t writes = 0;
+  int64_t widest_write = 0;
+  std::vector<uint64_t> consumed;
+  bool consumed_before_written = false;
+};
+
+WrittenText SampleText(const lang::CompiledProgram& program, int64_t count, int threads,
+                       int64_t fail_at = -1) {
+  BatchOptions options;
+  options.seed = 5;
+  options.count = count;
+  options.threads = threads;
+  WrittenText written;
+  BatchCallbacks callbacks;
+  callbacks.format = [fail_at](BatchScene& scene, std::string& text) {
+    if (int64_t(scene.sampled.index) == fail_at) {
+      text += "half a line";
+      throw std::runtime_error("format failed");
+    }
+    text += Fingerprint(scene.sampled) + '\n';
+  };
+  callbacks.write = [&](std::string_view text, int64_t lines) {
+    written.text += text;
+    written.lines += lines;
+    ++written.writes;
+    written.widest_write = std::max(written.widest_write, lines);
+  };
+  callbacks.consume = [&](BatchScene&& scene) {
+    written.consumed.push_back(scene.sampled.index);
+    if (int64_t(written.consumed.size()) > written.lines) written.consumed_before_written = true;
+  };
+  try {
+    const BatchSummary summary = SampleBatch(program, options, callbacks);
+    EXPECT_EQ(summary.scenes, count);
+  } catch (const std::runtime_error& error) {
+    EXPECT_STREQ(error.what(), "format failed");
+  }
+  return written;
+}
+
+TEST(BatchTest, FormattedTextIsWrittenInOrderARunAtATime) {
+  auto program = CompileOrDie(kRejectingProgram);
+  ASSERT_NE(program, nullptr);
+  const WrittenText one = SampleText(*program, 2000, 1);
+  ASSERT_EQ(one.lines, 2000);
+  EXPECT_EQ(one.writes, 2000);  // the calling thread alone: one scene at a time
+  for (int threads : {2, 4}) {
+    const WrittenText many = SampleText(*program, 2000, threads);
+    EXPECT_EQ(many.text, one.text) << threads << " threads";
+    EXPECT_EQ(many.lines, 2000);
+    EXPECT_EQ(many.consumed, one.consumed);
+    EXPECT_FALSE(many.consumed_before_written);
+    EXPECT_GT(many.widest_write, 16) << "runs of scenes are handed over whole";
+    EXPECT_LT(many.writes, 2000 / 16);
+  }
+}
+
+// A scene that fails in `format` ends the batch after the scenes before it, whose text (and
+// nothing of the failed scene or of the run after it) is written.
+TEST(BatchTest, TextStopsAtTheFirstFailedScene) {
+  auto program = CompileTableCube();
+  ASSERT_NE(program, nullptr);
+  const WrittenText one = SampleText(*program, 2000, 1);
+  std::vector<std::string> lines;
+  for (size_t begin = 0, end; (end = one.text.find('\n', begin)) != std::string::npos;
+       begin = end + 1) {
+    lines.push_back(one.text.substr(begin, end + 1 - begin));
+  }
+  ASSERT_EQ(lines.size(), 2000u);
+  std::string first_777;
+  for (int i = 0; i < 777; ++i) first_777 += lines[i];
+  for (int threads : {1, 2, 4}) {
+    const WrittenText failed = SampleText(*program, 2000, threads, 777);
+    EXPECT_EQ(failed.text, first_777) << threads << " threads";
+    EXPECT_EQ(failed.lines, 777);
+    EXPECT_EQ(failed.consumed.size(), 777u);
+  }
+}
+
+// The totals are counted per run on the workers and merged in order: the same counts and the
+// same first example of each culprit as on one thread.
+TEST(BatchTest, SummaryIsTheSameForAnyThreadCount) {
+  auto program = CompileOrDie(kRejectingProgram);
+  ASSERT_NE(program, nullptr);
+  auto summarise = [&](int threads) {
+    BatchOptions options;
+    options.seed = 11;
+    options.count = 3000;
+    options.threads = threads;
+    return SampleBatch(*program, options, {});
+  };
+  const BatchSummary one = summarise(1);
+  ASSERT_GT(one.rejections.total, 100);
+  for (int threads : {2, 3}) {
+    const BatchSummary many = summarise(threads);
+    EXPECT_EQ(many.scenes, one.scenes);
+    EXPECT_EQ(many.attempts, one.attempts);
+    EXPECT_EQ(many.rejections.by_culprit, one.rejections.by_culprit);
+    ASSERT_EQ(many.rejections.examples.size(), one.rejections.examples.size());
+    for (const auto& [key, example] : one.rejections.examples) {
+      ASSERT_TRUE(many.rejections.examples.count(key));
+      EXPECT_EQ(many.rejections.examples.at(key).detail, example.detail);
+    }
+  }
 }
 
 TEST(BatchTest, EmptyBatchConsumesNothing) {
