@@ -21,8 +21,11 @@ sampling::BatchOptions MakeBatchOptions(const RunOptions& options) {
   batch.count = options.count;
   batch.threads = options.threads;
   batch.cancel = options.cancel;
-  // Episodes are slow next to sampling: a short window keeps few finished scenes waiting.
-  batch.window_per_thread = 4;
+  // Episodes are slow next to sampling: claims of one episode, so that every thread ends with
+  // the run; a window of 16 a thread, so that one long episode (a timeout) does not stop the
+  // others (only records wait in it: each scene is freed on its worker).
+  batch.window_per_thread = 16;
+  batch.max_claim = 1;
   return batch;
 }
 

@@ -122,21 +122,22 @@ struct StopQueueOnExit {
   ~StopQueueOnExit() { queue.Stop(); }
 };
 
-// Small batches are claimed one scene at a time so that every thread gets a share; large ones
-// in runs of up to 64, which is plenty to amortise the lock and the hand-over.
-// Scenes a worker claims at once. A worker publishes its claim only when it has sampled all of
-// it, so a claim must leave room in the window for the other workers' claims: at most half a
-// thread's share of the window (with the harness's window of 4 per thread, 2 episodes; a chunk
-// as large as the window made one worker hold it all while the others waited).
-int64_t ChooseChunk(int64_t count, int threads, int window_per_thread) {
-  const int64_t max_chunk = std::clamp<int64_t>(window_per_thread / 2, 1, 64);
+// Scenes a worker claims at once. Small batches are claimed one scene at a time so that every
+// thread gets a share; large ones in runs of up to `max_claim` (64 for sampling, which is
+// plenty to amortise the lock and the hand-over; 1 for episodes). A worker publishes its claim
+// only when it has sampled all of it, so a claim must leave room in the window for the other
+// workers' claims: at most half a thread's share of the window (a chunk as large as the window
+// made one worker hold it all while the others waited).
+int64_t ChooseChunk(int64_t count, int threads, int window_per_thread, int max_claim) {
+  const int64_t max_chunk = std::clamp<int64_t>(window_per_thread / 2, 1, max_claim);
   return std::clamp<int64_t>(count / (int64_t{threads} * 16), 1, max_chunk);
 }
 
 BatchSummary SampleOnWorkers(const lang::CompiledProgram& program, const BatchOptions& options,
                              const BatchCallbacks& callbacks, int threads) {
   int64_t window_per_thread = std::max(options.window_per_thread, 1);
-  int64_t chunk = ChooseChunk(options.count, threads, window_per_thread);
+  int64_t chunk =
+      ChooseChunk(options.count, threads, window_per_thread, std::max(options.max_claim, 1));
   int64_t phase = 0;
   if (options.sample.gibbs) {
     // A chain's scenes cost one thinning interval each only on the thread that ran the ones

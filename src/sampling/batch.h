@@ -22,6 +22,9 @@ struct BatchOptions {
   int threads = 1;     // worker threads; 1 samples on the calling thread
   /// Scenes that may be finished ahead of the next one to hand back, per thread. Bounds memory.
   int window_per_thread = 256;
+  /// The most scenes a worker claims at once (runs are handed over whole). Fewer for slow
+  /// scenes (episodes), so that the threads' last claims end together.
+  int max_claim = 64;
   /// Polled about every 50 ms and between scenes; once true, the batch stops (BatchCancelled).
   const std::atomic<bool>* cancel = nullptr;
 };
