@@ -28,6 +28,25 @@ bool IsGridded(const SceneObject& o, double reach) {
   return reach <= kCellM && std::fabs(o.p_WO.x()) < 1e6 && std::fabs(o.p_WO.y()) < 1e6;
 }
 
+size_t HashCell(uint64_t key, size_t buckets) {
+  return static_cast<size_t>((key * 0x9E3779B97F4A7C15ULL) >> 32) & (buckets - 1);
+}
+
+// Files `object` under `cell`, doubling the buckets when there are as many pairs as buckets.
+void FileInCell(CollisionGrid& grid, uint64_t cell, int object) {
+  if (grid.entries.size() >= grid.heads.size()) {
+    grid.heads.assign(grid.heads.size() * 2, -1);
+    for (size_t e = 0; e < grid.entries.size(); ++e) {
+      const size_t h = HashCell(grid.entries[e].cell, grid.heads.size());
+      grid.entries[e].next = grid.heads[h];
+      grid.heads[h] = static_cast<int>(e);
+    }
+  }
+  const size_t h = HashCell(cell, grid.heads.size());
+  grid.entries.push_back({cell, object, grid.heads[h]});
+  grid.heads[h] = static_cast<int>(grid.entries.size() - 1);
+}
+
 // Calls visit(key) for each cell the square around the ball at `o` overlaps.
 template <typename Visit>
 void ForEachCell(const SceneObject& o, double reach, Visit visit) {
@@ -50,9 +69,8 @@ void Interpreter::CheckCollisions(int index) {
     std::vector<int>& candidates = grid.candidates;
     candidates = grid.large;
     ForEachCell(o, reach, [&](uint64_t key) {
-      auto it = grid.cells.find(key);
-      if (it != grid.cells.end()) {
-        candidates.insert(candidates.end(), it->second.begin(), it->second.end());
+      for (int e = grid.heads[HashCell(key, grid.heads.size())]; e >= 0; e = grid.entries[e].next) {
+        if (grid.entries[e].cell == key) candidates.push_back(grid.entries[e].object);
       }
     });
     std::sort(candidates.begin(), candidates.end());
@@ -78,6 +96,9 @@ bool Interpreter::IsCollidable(int index) const {
 
 void Interpreter::BuildGrid(int checking) {
   collision_grid_.built = true;
+  size_t buckets = 256;  // a few cells an object, for the objects so far
+  while (buckets < 8 * scene_.objects.size()) buckets *= 2;
+  collision_grid_.heads.assign(buckets, -1);
   for (int k = 0; k < static_cast<int>(scene_.objects.size()); ++k) {
     if (k != checking && IsCollidable(k)) AddToCollisionGrid(k);
   }
@@ -91,7 +112,7 @@ void Interpreter::AddToCollisionGrid(int index) {
     grid.large.push_back(index);
     return;
   }
-  ForEachCell(o, reach, [&](uint64_t key) { grid.cells[key].push_back(index); });
+  ForEachCell(o, reach, [&](uint64_t key) { FileInCell(grid, key, index); });
 }
 
 void Interpreter::RejectCollision(int index, int other) {

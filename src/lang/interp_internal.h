@@ -104,6 +104,25 @@ geometry::OrientedBox BoxOfObject(const SceneObject& o);
 /// Whether the object (its mesh's hull, or its box) lies in `region` within `tolerance` metres.
 bool ObjectInRegion(const geometry::ConvexRegion& region, const SceneObject& o, double tolerance);
 
+/// The collision checks' broad phase: completed collidable objects, by the cells of a
+/// horizontal grid their bounding balls' squares overlap (collisions.cc).
+struct CollisionGrid {
+  int collidable = 0;  // collidable objects checked so far
+  bool built = false;  // from RunOptions::collision_grid_from of them on
+  /// The filed (cell, object) pairs, chained by the cell's hash: heads[hash] is the last
+  /// pair filed under it, Entry::next the one before (-1: none). Two arrays a run, not an
+  /// allocation per cell.
+  struct Entry {
+    uint64_t cell;
+    int object;
+    int next;
+  };
+  std::vector<int> heads;  // a power of two of them
+  std::vector<Entry> entries;
+  std::vector<int> large;       // balls wider than a cell: tested against every object
+  std::vector<int> candidates;  // scratch for one object's tests
+};
+
 class Interpreter {
  public:
   Interpreter(const CompiledProgram& program, geometry::Rng& rng, const RunOptions& options);
@@ -366,15 +385,6 @@ class Interpreter {
   RunOptions options_;
   Scene scene_;
   std::vector<bool> completed_;      // per object: fully placed (collision checks use these)
-  /// The collision checks' broad phase: completed collidable objects, by the cells of a
-  /// horizontal grid their bounding balls' squares overlap (collisions.cc).
-  struct CollisionGrid {
-    int collidable = 0;  // collidable objects checked so far
-    bool built = false;  // from RunOptions::collision_grid_from of them on
-    std::unordered_map<uint64_t, std::vector<int>> cells;
-    std::vector<int> large;       // balls wider than a cell: tested against every object
-    std::vector<int> candidates;  // scratch for one object's tests
-  };
   CollisionGrid collision_grid_;
   std::vector<ModuleEnv> module_envs_;
   std::vector<bool> module_ran_;

@@ -2,13 +2,16 @@
 // compile-time analysis beside the fixed-site one (fixed.cc), over every creation, in loops
 // too. A site qualifies when everything its specifiers and its class's defaults read is the
 // same in every scene — literals, built-ins, `math`, `self`, and module names that are fixed
-// (MarkFixedPlacements) and bound exactly once, at the top level — and it creates nothing and
+// (MarkFixedPlacements) and bound only by top-level statements before the site (so
+// `workspace = ...` after `from model import *` is read as the fixed value it has from then
+// on) — and it creates nothing and
 // calls no user function; its specifiers are among those that only place the object (not
 // `visible from` or `reachable by`, which register checks for later), and the module's
 // `workspace`, which placement reads unnamed, is fixed too. Sites inside functions
 // never qualify: a local may shadow a module name. The Gibbs sampler (sampling/gibbs.h) runs a
 // program many times at points that differ in one object's numbers; such objects are then
 // copied from the previous run instead of made again (RunOptions::reuse_objects).
+#include <climits>
 #include <map>
 #include <set>
 
@@ -29,38 +32,46 @@ class OwnDrawAnalysis {
   void Run() {
     for (size_t m = 0; m < program_.modules.size(); ++m) FindStableNames(static_cast<int>(m));
     for (size_t m = 0; m < program_.modules.size(); ++m) {
-      for (const StmtPtr& stmt : program_.modules[m]->ast.body) {
-        VisitStmt(*stmt, static_cast<int>(m));
+      visiting_module_ = static_cast<int>(m);
+      const std::vector<StmtPtr>& body = program_.modules[m]->ast.body;
+      for (size_t i = 0; i < body.size(); ++i) {
+        visiting_statement_ = static_cast<int>(i);
+        VisitStmt(*body[i], static_cast<int>(m));
       }
     }
   }
 
  private:
-  // Names fixed after the module ran, bound once at its top level and in no block.
+  // Names fixed after the module ran and bound only by its top-level statements, in no block,
+  // each with the last of those statements: from there on (to the module's end and after it)
+  // the name holds the value it ends with, so sites after it read that fixed value. (Sites
+  // before it may see an earlier value, which need not be fixed: they do not qualify.)
   void FindStableNames(int m) {
-    std::map<std::string, int> bindings;
+    std::map<std::string, int> last_binding;  // the top-level statement that binds it last
     std::set<std::string> in_blocks;
-    for (const StmtPtr& stmt : program_.modules[m]->ast.body) {
+    const std::vector<StmtPtr>& body = program_.modules[m]->ast.body;
+    for (size_t i = 0; i < body.size(); ++i) {
+      auto bind = [&](const std::string& name) { last_binding[name] = static_cast<int>(i); };
       std::visit(
           [&](const auto& node) {
             using T = std::decay_t<decltype(node)>;
             if constexpr (std::is_same_v<T, AssignStmt>) {
-              for (const Identifier& t : node.targets) ++bindings[t.name];
+              for (const Identifier& t : node.targets) bind(t.name);
             } else if constexpr (std::is_same_v<T, AugAssignStmt>) {
-              bindings[node.target.name] += 2;  // a rebinding
+              bind(node.target.name);
             } else if constexpr (std::is_same_v<T, ClassDef> || std::is_same_v<T, FunctionDef>) {
-              ++bindings[node.name.name];
+              bind(node.name.name);
             } else if constexpr (std::is_same_v<T, ParamStmt>) {
-              for (const auto& [name, value] : node.params) ++bindings[name.name];
+              for (const auto& [name, value] : node.params) bind(name.name);
             } else if constexpr (std::is_same_v<T, ImportStmt>) {
-              ++bindings[node.module.name];
+              bind(node.module.name);
             } else if constexpr (std::is_same_v<T, FromImportStmt>) {
               auto it = program_.import_targets.find(&node);
               if (it == program_.import_targets.end()) return;
-              // Bound once here, to whatever the module left it as (fixed_ says whether
-              // that is the same in every scene).
+              // Bound here to whatever the module left it as (fixed_ says whether that is
+              // the same in every scene).
               for (const std::string& name : program_.modules[it->second]->global_names) {
-                ++bindings[name];
+                bind(name);
               }
             } else if constexpr (std::is_same_v<T, ForStmt>) {
               for (const Identifier& t : node.targets) in_blocks.insert(t.name);
@@ -74,11 +85,11 @@ class OwnDrawAnalysis {
               CollectBoundNames(program_, node.else_body, in_blocks);
             }
           },
-          stmt->node);
+          body[i]->node);
     }
-    for (const auto& [name, count] : bindings) {
+    for (const auto& [name, statement] : last_binding) {
       bound_[m].insert(name);
-      if (count == 1 && !in_blocks.count(name) && fixed_[m].count(name)) stable_[m].insert(name);
+      if (!in_blocks.count(name) && fixed_[m].count(name)) stable_[m][name] = statement;
     }
     for (const std::string& name : in_blocks) bound_[m].insert(name);
   }
@@ -121,7 +132,7 @@ class OwnDrawAnalysis {
     if (it == program_.plans.end()) return;
     ObjectPlan& plan = it->second;
     // Placement reads the module's `workspace` without naming it (it bounds the region).
-    bool pure = !bound_[m].count("workspace") || stable_[m].count("workspace");
+    bool pure = !bound_[m].count("workspace") || IsStableName("workspace", m);
     for (const Specifier& s : create.specifiers) {
       pure = pure && static_cast<int>(s.kind) <= static_cast<int>(SpecifierKind::kFacingToward);
       for (const ExprPtr* e : {&s.target, &s.distance, &s.from}) {
@@ -165,16 +176,25 @@ class OwnDrawAnalysis {
     return pure;
   }
 
+  // In the site's own module, a name is read as the site's statement runs: after its last
+  // binding it stays; a class default evaluated in another module reads that module's final
+  // value (it ran to its end first).
   bool IsStableName(const std::string& name, int m) const {
     if (name == "self") return true;
-    if (stable_[m].count(name)) return true;
+    if (auto it = stable_[m].find(name); it != stable_[m].end()) {
+      const int reading = m == visiting_module_ ? visiting_statement_ : INT_MAX;
+      return it->second < reading;
+    }
     return !bound_[m].count(name) && FindGlobalBuiltin(name);
   }
 
   CompiledProgram& program_;
   const std::vector<std::set<std::string>>& fixed_;
-  std::vector<std::set<std::string>> stable_;  // per module
-  std::vector<std::set<std::string>> bound_;   // per module: every name bound anywhere at its level
+  // Per module: stable names, each with the top-level statement that binds it last.
+  std::vector<std::map<std::string, int>> stable_;
+  std::vector<std::set<std::string>> bound_;  // per module: every name bound anywhere at its level
+  int visiting_module_ = -1;                  // the module and top-level statement of the
+  int visiting_statement_ = -1;               // sites being marked
 };
 
 }  // namespace

@@ -5,11 +5,15 @@
 // for every example, with the grid from the first object on and with it off).
 #include <gtest/gtest.h>
 
+#include <cmath>
 #include <cstdio>
 #include <filesystem>
 #include <map>
 #include <string>
+#include <variant>
+#include <vector>
 
+#include "lang/run_cache.h"
 #include "sampling/gibbs.h"
 #include "sampling/test/scene_checks.h"
 
@@ -48,13 +52,17 @@ TEST(ReuseTest, OnlySitesThatReadFixedNamesAreOwnDraws) {
       "Cup completely on bin, with color Options(['red', 'blue'])\n"    // 13 yes
       "Cup completely on bin, visible from tray\n"                      // 14 no: a view
       "spot = V3D(0.1, 0, 0.85)\n"                                      // 15
-      "spot = V3D(0.2, 0, 0.85)\n"                                      // 16
-      "Cube at spot\n");                                                // 17 no: rebound
+      "Cube at spot\n"                                                  // 16 no: rebound later
+      "spot = V3D(0.2, 0, 0.85)\n"                                      // 17
+      "Cube at spot\n"                                                  // 18 yes: fixed from here
+      "for i in range(2):\n"                                            // 19
+      "    place = V3D(i * 0.1, 0, 0.85)\n"                             // 20
+      "Cube at place\n");                                               // 21 no: bound in a loop
   ASSERT_TRUE(program);
   const std::map<int, bool> flags = OwnDrawFlags(*program);
   const std::map<int, bool> expected = {{3, true},   {5, true},   {6, false}, {7, false},
                                         {9, false},  {11, false}, {12, true}, {13, true},
-                                        {14, false}, {17, false}};
+                                        {14, false}, {16, false}, {18, true}, {21, false}};
   for (const auto& [line, own] : expected) {
     ASSERT_TRUE(flags.count(line)) << "no site on line " << line;
     EXPECT_EQ(flags.at(line), own) << "line " << line;
@@ -67,6 +75,50 @@ TEST(ReuseTest, OnlySitesThatReadFixedNamesAreOwnDraws) {
       "Cube completely on bin, with yaw Range(0, 6)\n");
   ASSERT_TRUE(moving);
   EXPECT_FALSE(OwnDrawFlags(*moving).at(4));
+  // A fixed workspace of the program's own after `from model import *` (which binds one too):
+  // sites after it qualify, a site before it does not.
+  const auto widened = CompileOrDie(
+      "from model import *\n"
+      "bin = Table on V3D(0, 0, 0), with width 0.5, with length 0.4\n"
+      "Cube completely on bin, with yaw Range(0, 6)\n"
+      "workspace = Cuboid(V3D(0, 0, 1.5), V3D(0, 0, 0), 5, 5, 3)\n"
+      "Cube completely on bin, with yaw Range(0, 6)\n");
+  ASSERT_TRUE(widened);
+  EXPECT_FALSE(OwnDrawFlags(*widened).at(3));
+  EXPECT_TRUE(OwnDrawFlags(*widened).at(5));
+}
+
+// The objects of qualifying sites are kept for the next run (and not those of others), so
+// that reuse happens at all: the chains' equality below holds without it too.
+TEST(ReuseTest, ARunKeepsTheObjectsOfQualifyingSites) {
+  const auto program = CompileOrDie(
+      "from model import *\n"
+      "workspace = Cuboid(V3D(0, 0, 1.5), V3D(0, 0, 0), 5, 5, 3)\n"
+      "t = Table on V3D(0, 0, 0), with width 4, with length 4\n"
+      "for i in range(6):\n"
+      "    Cube completely on t, with yaw Range(0, 2 * math.pi)\n"
+      "    Cube at V3D(-1.5 + 0.5 * i, -1.5, 0.85)\n");  // reads i: not kept
+  ASSERT_TRUE(program);
+  std::vector<double> u(64);
+  for (size_t i = 0; i < u.size(); ++i) u[i] = std::fmod(0.137 + 0.618 * double(i), 1.0);
+  lang::RunCache cache;
+  lang::RunOptions options;
+  options.cache = &cache;
+  options.coordinates.values = u.data();
+  options.coordinates.size = static_cast<int>(u.size());
+  options.reuse_objects = true;
+  geometry::Rng rng(1);
+  const lang::AttemptResult first = lang::RunAttempt(*program, rng, options);
+  ASSERT_TRUE(std::holds_alternative<lang::Scene>(first));
+  EXPECT_EQ(cache.reusable.size(), 7u);  // the table (no draws) and the six drawn cubes
+  for (const auto& [key, kept] : cache.reusable) EXPECT_TRUE(key.first->own_draws_only);
+  geometry::Rng again(1);
+  const lang::AttemptResult second = lang::RunAttempt(*program, again, options);
+  ASSERT_TRUE(std::holds_alternative<lang::Scene>(second));
+  sampling::SampledScene a, b;
+  a.scene = std::get<lang::Scene>(first);
+  b.scene = std::get<lang::Scene>(second);
+  EXPECT_EQ(Fingerprint(a), Fingerprint(b));
 }
 
 TEST(ReuseTest, ReusedObjectsGiveTheSameChains) {
