@@ -1,6 +1,7 @@
 // End-to-end tests of --sampler gibbs: the same scenes for any thread count and index range,
 // the notes and the stats that say the scenes are correlated, a test run's records that
-// regenerate their scenes, and the commands that draw scenes at given points refusing it.
+// regenerate their scenes (and replay to the same records), and the commands that draw scenes at
+// given points refusing it.
 #include <nlohmann/json.hpp>
 
 #include "cli/test/prs_test_fixture.h"
@@ -85,6 +86,20 @@ TEST_F(PrsTest, GibbsRecordsRegenerateTheirScenes) {
   EXPECT_EQ(scene["index"], 9);
   // The record's features are the scene's: the first cube's position.
   EXPECT_EQ(record["features"]["Cube#1.x"], scene["objects"][1]["position"][0]);
+  // --replay regenerates every record's scene at its coordinates (a chain's scene is a point
+  // like any other) and gives the same records.
+  const std::string replayed = (dir_ / "replayed.jsonl").string();
+  r = Run({"test", file, "-I", include, "--replay", records, "--exec", "false", "-o", replayed});
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  const std::vector<std::string> again = Lines(ReadText(replayed));
+  ASSERT_EQ(again.size(), lines.size());
+  for (size_t i = 0; i < lines.size(); ++i) {
+    const json before = json::parse(lines[i]), after = json::parse(again[i]);
+    EXPECT_EQ(after["index"], before["index"]) << i;
+    EXPECT_EQ(after["coordinates"], before["coordinates"]) << i;
+    EXPECT_EQ(after["features"], before["features"]) << i;
+    EXPECT_EQ(after["outcome"], before["outcome"]) << i;
+  }
 }
 
 TEST_F(PrsTest, GibbsIsRefusedWhereScenesAreDrawnAtGivenPoints) {
