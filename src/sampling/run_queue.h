@@ -56,7 +56,7 @@ class RunQueue {
   void Fail(int64_t offset, std::exception_ptr error);
 
   /// Consumer: releases the offsets before `offset` (consumed; `offset` starts a run), waits
-  /// for finished runs from `offset` (a quarter of the window's scenes, the last ones, or
+  /// for finished runs from `offset` (half the window's scenes, the last ones, or
   /// whatever is there at a 50 ms poll: the consumer wakes once for many runs), and moves them
   /// into `ready`. Their offsets stay reserved until the next call, so at most `window` scenes
   /// exist at a time. Calls `tick` at each poll. Rethrows the failure of `offset`, or throws
