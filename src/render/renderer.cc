@@ -7,6 +7,7 @@
 #include <limits>
 #include <stdexcept>
 
+#include "render/context_key.h"
 #include "render/egl_context.h"
 #include "render/model_renderer.h"
 #include "render/mujoco_model.h"
@@ -216,6 +217,7 @@ struct ModelRenderer::State {
   mjvOption option;
   mjvCamera camera;
   mjrContext context;
+  std::string context_key;  // CalcRenderContextKey of the model the context was made for
 
   // The context is current only inside each call (internal::EglContext::Scope): a
   // renderer may be used by one thread after another.
@@ -234,10 +236,17 @@ struct ModelRenderer::State {
     mjv_freeScene(&scene);
   }
 
-  // MuJoCo's scene and render context hold the model's meshes, textures and buffer sizes.
+  // MuJoCo's scene and render context hold the model's meshes, textures and buffer sizes:
+  // they are remade only for a model that differs in those (render/context_key.h).
   void UseModel(const mjModel& m) {
     if (width > m.vis.global.offwidth || height > m.vis.global.offheight)
       throw std::runtime_error("the model's offscreen buffer is smaller than the picture");
+    std::string key = CalcRenderContextKey(m);
+    if (model && !key.empty() && key == context_key) {
+      model = &m;
+      return;
+    }
+    context_key.clear();
     internal::EglContext::Scope current(egl);
     mjr_freeContext(&context);
     mjv_freeScene(&scene);
@@ -247,6 +256,7 @@ struct ModelRenderer::State {
     if (context.currentBuffer != mjFB_OFFSCREEN)
       throw std::runtime_error("MuJoCo could not make its offscreen framebuffer");
     model = &m;
+    context_key = std::move(key);
   }
 };
 

@@ -13,6 +13,9 @@ namespace prs::sim {
 
 namespace {
 
+// The world's extent (MuJoCo's stat.extent) in metres: see WriteWorldMjcf.
+constexpr double kWorldExtentM = 3.0;
+
 using internal::FormatQuat;
 using internal::FormatVector;
 
@@ -103,7 +106,12 @@ std::string WriteWorldMjcf(const exporting::ExportScene& scene) {
   InsertBefore(xml, "</worldbody>", bodies);
   // Offscreen buffers big enough for the camera images the controller renders.
   InsertBefore(xml, "</mujoco>", "<visual><global offwidth=\"1280\" offheight=\"960\"/></visual>");
-  if (!equalities.empty()) InsertBefore(xml, "</mujoco>", "<equality>" + equalities + "</equality>");
+  // One extent for every scene (MuJoCo would compute 2.97-3.13 m for Table-Cube's, from where
+  // the objects lie): the cameras' clipping planes, the shadows and the ground's grid are then
+  // the same in every episode, and one render context serves them all (render/context_key.h).
+  InsertBefore(xml, "</mujoco>", fmt::format("<statistic extent=\"{}\"/>", kWorldExtentM));
+  if (!equalities.empty())
+    InsertBefore(xml, "</mujoco>", "<equality>" + equalities + "</equality>");
   if (!actuators.empty()) InsertBefore(xml, "</mujoco>", "<actuator>" + actuators + "</actuator>");
   return xml;
 }
