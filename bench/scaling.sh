@@ -27,6 +27,14 @@ seconds() {  # wall seconds of a command, its output discarded
   awk -v a="$begin" -v b="$end" 'BEGIN { printf "%.3f", b - a }'
 }
 
+# The end of a table row: the speed-up of the last rate over the first, and whether every
+# thread count gave the same digest.
+end_row() {
+  local same=yes d
+  for d in "${digests[@]}"; do [ "$d" = "${digests[0]}" ] || same=NO; done
+  echo "$row $(awk -v a="$first" -v b="$last" 'BEGIN { printf "%.2f×", b / a }') | $same |"
+}
+
 # example and scene count: counts chosen for a few seconds a run on one core
 samples=("table_cube.prs $(count 2000000)"
          "table_cube_reachable_visible.prs $(count 400000)"
@@ -49,10 +57,7 @@ for entry in "${samples[@]}"; do
     row+=" $rate |"; first=${first:-$rate}; last=$rate
     digests+=("$("$prs" sample "examples/$file" -n "$(( n / 20 + 1 ))" -s 1 --threads "$t" -q | sha256sum | cut -c1-16)")
   done
-  same=yes
-  for d in "${digests[@]}"; do [ "$d" = "${digests[0]}" ] || same=NO; done
-  row+=" $(awk -v a="$first" -v b="$last" 'BEGIN { printf "%.2f×", b / a }') | $same |"
-  echo "$row"
+  end_row
 done
 
 if [ "$episodes" != 0 ] && [ "${EPISODES:-320}" != 0 ]; then
@@ -68,10 +73,7 @@ if [ "$episodes" != 0 ] && [ "${EPISODES:-320}" != 0 ]; then
     # Records carry each episode's wall time; everything else must match.
     digests+=("$(sed 's/"wall_s":[0-9.e+-]*,//' "$tmp/episodes_$t.jsonl" | sha256sum | cut -c1-16)")
   done
-  same=yes
-  for d in "${digests[@]}"; do [ "$d" = "${digests[0]}" ] || same=NO; done
-  row+=" $(awk -v a="$first" -v b="$last" 'BEGIN { printf "%.2f×", b / a }') | $same |"
-  echo "$row"
+  end_row
 fi
 echo
 echo "$(nproc) cores ($(lscpu | sed -n 's/^Model name: *//p' | head -1)), $(date -u +%Y-%m-%d), $prs"
