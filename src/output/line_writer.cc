@@ -57,10 +57,7 @@ void LineWriter::AddLine(std::string_view line) {
   buffer_.append(line);
   buffer_.push_back('\n');
   ++buffered_lines_;
-  if (buffer_.size() >= kFlushBytes ||
-      std::chrono::steady_clock::now() - last_write_ >= kFlushInterval) {
-    Flush();
-  }
+  FlushIfDue();
 }
 
 void LineWriter::AddLines(std::string_view lines, int64_t count) {
@@ -72,6 +69,10 @@ void LineWriter::AddLines(std::string_view lines, int64_t count) {
   }
   buffer_.append(lines);
   buffered_lines_ += count;
+  FlushIfDue();
+}
+
+void LineWriter::FlushIfDue() {
   if (buffer_.size() >= kFlushBytes ||
       std::chrono::steady_clock::now() - last_write_ >= kFlushInterval) {
     Flush();

@@ -45,6 +45,8 @@ class LineWriter {
   int64_t lines_written() const { return lines_written_; }
 
  private:
+  /// Flush() once the buffer holds 64 KiB or the last write is 200 ms old.
+  void FlushIfDue();
   void WriteAll(std::string_view bytes);
   [[noreturn]] void ThrowIoError(const char* action, const std::string& path) const;
 
