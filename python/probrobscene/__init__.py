@@ -69,7 +69,9 @@ def load(path: PathLike, params: Optional[Mapping[str, ParamValue]] = None,
             seconds; a scene not at rest by then, with an object outside the workspace, or
             breaking a ``require settled``, is rejected as "unsettled" (docs/physics.md).
             Not with ``stable``.
-        sampler: ``"rejection"`` (exact, the default) or ``"gibbs"`` (``prs --sampler gibbs``):
+        sampler: ``"rejection"`` (exact, the default), ``"partial-rejection"`` (``prs --sampler
+            partial-rejection``: exact, independent scenes of clutter, objects that only must not
+            overlap, by partial rejection sampling) or ``"gibbs"`` (``prs --sampler gibbs``):
             scenes from a Markov chain over the scene coordinates, for clutter whole-scene
             rejection cannot reach; they are correlated (``Scenario.gibbs`` says how much, once
             scenes were drawn; docs/sampling.md).
@@ -133,8 +135,9 @@ def _load_options(params, search_path, max_attempts, naive, stable=None, stable_
         options.stable_turn_deg = float(stable_turn)
     if settle is not None and settle is not False:
         options.settle_s = _seconds("settle", settle, 3.0)
-    if sampler not in ("rejection", "gibbs"):
-        raise ValueError(f"sampler must be 'rejection' or 'gibbs', got {sampler!r}")
+    if sampler not in ("rejection", "partial-rejection", "gibbs"):
+        raise ValueError(
+            f"sampler must be 'rejection', 'partial-rejection' or 'gibbs', got {sampler!r}")
     options.sampler = sampler
     return options
 

@@ -42,8 +42,9 @@ def init(dir: PathLike, path: PathLike, n: int, *, seed: int = 0, shard_size: in
     ``n`` in generations of ``batch`` (default as ``prs search``), run generation after
     generation (docs/search.md). ``stable`` and ``settle`` as for :func:`probrobscene.load`
     (``--stable``, ``--settle``): every shard keeps only scenes at rest, or settles them;
-    ``sampler="gibbs"`` draws the scenes from Gibbs chains (``--sampler gibbs``), the same
-    scenes for any shard layout. Returns the campaign id. Raises ScenarioError for a
+    ``sampler="gibbs"`` draws the scenes from Gibbs chains (``--sampler gibbs``) and
+    ``sampler="partial-rejection"`` by partial rejection sampling, the same scenes for any
+    shard layout. Returns the campaign id. Raises ScenarioError for a
     scenario that does not compile and ValueError for a directory that is in use or an unknown
     controller or strategy."""
     from . import _load_options  # the package's own conversion of params and options

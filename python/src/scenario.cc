@@ -12,6 +12,7 @@
 #include "bindings.h"
 #include "sampling/batch.h"
 #include "sampling/gibbs.h"
+#include "sampling/partial_rejection.h"
 #include "sim/settle.h"
 
 namespace prs::python {
@@ -103,7 +104,32 @@ class Scenario {
   std::optional<double> settle() const {
     return settle_s_ > 0 ? std::optional<double>(settle_s_) : std::nullopt;
   }
-  std::string sampler() const { return options_.gibbs ? "gibbs" : "rejection"; }
+  std::string sampler() const {
+    return options_.gibbs               ? "gibbs"
+           : options_.partial_rejection ? "partial-rejection"
+                                        : "rejection";
+  }
+  /// --sampler partial-rejection: the sites and the pilot once scenes were drawn, else None.
+  py::object partial_rejection() const {
+    if (!options_.partial_rejection) return py::none();
+    const std::optional<sampling::PartialRejectionPlan> plan = options_.partial_rejection->plan();
+    if (!plan) return py::none();
+    py::list sites;
+    for (const sampling::ClutterSite& site : plan->sites) {
+      py::dict d;
+      d["site"] = site.name;
+      d["objects"] = site.ordinals.size();
+      d["coordinates"] = site.coordinates;
+      d["intensity"] = site.intensity;
+      sites.append(d);
+    }
+    py::dict d;
+    d["sites"] = sites;
+    d["mean_rounds"] = plan->mean_rounds;
+    d["mean_probe_runs"] = plan->mean_probes;
+    d["count_acceptance"] = plan->count_acceptance;
+    return d;
+  }
   /// --sampler gibbs: the chain's schedule once scenes were drawn, else None.
   py::object gibbs() const {
     if (!options_.gibbs) return py::none();
@@ -240,8 +266,11 @@ std::unique_ptr<Scenario> Compile(const std::string& path, const std::optional<s
   sample.run.mode = load.naive ? lang::SamplingMode::kNaive : lang::SamplingMode::kRegion;
   if (load.sampler == "gibbs") {
     sample.gibbs = std::make_shared<sampling::GibbsRequest>();
+  } else if (load.sampler == "partial-rejection") {
+    sample.partial_rejection = std::make_shared<sampling::PartialRejectionRequest>();
   } else if (load.sampler != "rejection") {
-    throw py::value_error("sampler must be 'rejection' or 'gibbs', got '" + load.sampler + "'");
+    throw py::value_error("sampler must be 'rejection', 'partial-rejection' or 'gibbs', got '" +
+                          load.sampler + "'");
   }
   try {
     sample.accept = sim::MakePhysicsTest(
@@ -319,11 +348,16 @@ void BindScenario(py::module_& m) {
       .def_property_readonly("max_attempts", &Scenario::max_attempts,
                              "Attempts per scene before sampling fails.")
       .def_property_readonly("sampler", &Scenario::sampler,
-                             "'rejection' (exact, the default) or 'gibbs' (load(sampler=...)).")
+                             "'rejection' (exact, the default), 'partial-rejection' (exact, for "
+                             "clutter) or 'gibbs' (load(sampler=...)).")
       .def_property_readonly("gibbs", &Scenario::gibbs,
                              "With sampler='gibbs', once scenes were drawn: the chain's "
                              "schedule (autocorrelation time in sweeps, thinning, burn-in); "
                              "else None.")
+      .def_property_readonly("partial_rejection", &Scenario::partial_rejection,
+                             "With sampler='partial-rejection', once scenes were drawn: the "
+                             "sites (their objects, coordinates and Poisson intensities) and "
+                             "the pilot's rounds and probe runs a draw; else None.")
       .def_property_readonly("naive", &Scenario::naive, "True in the naive sampling mode.")
       .def_property_readonly("stable", &Scenario::stable,
                              "The simulated seconds of the physics check (stable=), or None.")

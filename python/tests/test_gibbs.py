@@ -46,5 +46,6 @@ def test_a_gibbs_campaign_is_prs_sample_for_any_shard_size(prs_binary, tmp_path)
 
 
 def test_bad_samplers_are_refused():
-    with pytest.raises(ValueError, match="sampler must be 'rejection' or 'gibbs'"):
+    with pytest.raises(ValueError,
+                       match="sampler must be 'rejection', 'partial-rejection' or 'gibbs'"):
         prs.loads(BIN, search_path=[EXAMPLES], sampler="metropolis")

@@ -20,6 +20,7 @@
 #include "output/scene_json.h"
 #include "sampling/batch.h"
 #include "sampling/gibbs.h"
+#include "sampling/partial_rejection.h"
 #include "search/like.h"
 
 namespace prs::campaign {
@@ -87,6 +88,9 @@ sampling::SampleOptions MakeSampleOptions(const CampaignSpec& spec) {
   sample.max_attempts = spec.max_attempts;
   sample.run.mode = spec.naive ? lang::SamplingMode::kNaive : lang::SamplingMode::kRegion;
   if (spec.sampler == "gibbs") sample.gibbs = std::make_shared<sampling::GibbsRequest>();
+  if (spec.sampler == "partial-rejection") {
+    sample.partial_rejection = std::make_shared<sampling::PartialRejectionRequest>();
+  }
   return sample;
 }
 

@@ -29,7 +29,7 @@ struct CampaignSpec {
   std::vector<std::string> scenario_words;                  // the FILE -I -p --naive given at init
   std::vector<std::pair<std::string, std::string>> params;  // -p NAME=VALUE
   bool naive = false;
-  std::string sampler = "rejection";  // or "gibbs" (sampling/gibbs.h)
+  std::string sampler = "rejection";  // "partial-rejection" or "gibbs" (sampling/)
   int64_t max_attempts = 10'000;
   uint64_t seed = 0;
   uint64_t count = 0;

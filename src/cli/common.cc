@@ -17,6 +17,7 @@
 
 #include "output/line_writer.h"
 #include "sampling/gibbs.h"
+#include "sampling/partial_rejection.h"
 
 namespace prs::cli {
 namespace {
@@ -164,11 +165,12 @@ void AddSamplingOptions(CLI::App& command, SamplingArgs& args) {
                    "the paper's baseline: positions from the workspace, specifiers checked after");
   command
       .add_option("--sampler", args.sampler,
-                  "rejection (exact, the default) or gibbs (a Markov chain over the scene "
-                  "coordinates, for clutter that rejection cannot reach; correlated scenes: "
-                  "docs/sampling.md)")
+                  "rejection (exact, the default), partial-rejection (exact, for clutter: "
+                  "objects that only must not overlap) or gibbs (a Markov chain over the scene "
+                  "coordinates, for clutter too dense for both; correlated scenes): "
+                  "docs/sampling.md")
       ->type_name("KIND")
-      ->check(CLI::IsMember({"rejection", "gibbs"}))
+      ->check(CLI::IsMember({"rejection", "partial-rejection", "gibbs"}))
       ->capture_default_str();
   command.add_option("--max-attempts", args.max_attempts, "attempts per scene before failing")
       ->type_name("K")
@@ -230,6 +232,9 @@ sampling::SampleOptions MakeSampleOptions(const SamplingArgs& args) {
   options.run.mode = args.naive ? lang::SamplingMode::kNaive : lang::SamplingMode::kRegion;
   options.accept = sim::MakePhysicsTest(MakePhysicsCheck(args));
   if (args.sampler == "gibbs") options.gibbs = std::make_shared<sampling::GibbsRequest>();
+  if (args.sampler == "partial-rejection") {
+    options.partial_rejection = std::make_shared<sampling::PartialRejectionRequest>();
+  }
   return options;
 }
 

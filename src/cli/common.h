@@ -41,7 +41,7 @@ struct SamplingArgs {
   uint64_t seed = 0;
   int threads = 1;
   bool naive = false;
-  std::string sampler = "rejection";  // --sampler rejection|gibbs
+  std::string sampler = "rejection";  // --sampler rejection|partial-rejection|gibbs
   int64_t max_attempts = 10'000;
   /// --stable[=T]: the simulated seconds of the physics check, as given ("1" for a bare
   /// --stable); empty when off.

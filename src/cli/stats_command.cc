@@ -41,6 +41,9 @@ SamplingStats MeasureSampling(const lang::CompiledProgram& program, const StatsA
   progress.Attach(options, callbacks);
   stats.summary = sampling::SampleBatch(program, options, callbacks);
   if (options.sample.gibbs) stats.gibbs = options.sample.gibbs->plan();
+  if (options.sample.partial_rejection) {
+    stats.partial_rejection = options.sample.partial_rejection->plan();
+  }
   stats.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - begin).count();
   return stats;
 }

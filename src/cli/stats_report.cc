@@ -79,8 +79,39 @@ std::string FormatGibbs(const SamplingStats& stats) {
       FormatCount(g.burn_in_sweeps, "sweep"), g.blocks, g.scenes_per_chain);
 }
 
+// --sampler partial-rejection: how its draws went (from the pilot).
+std::string FormatPartialRejection(const SamplingStats& stats) {
+  if (!stats.partial_rejection) return "";
+  const sampling::PartialRejectionPlan& p = *stats.partial_rejection;
+  std::string sites;
+  for (const sampling::ClutterSite& site : p.sites) {
+    sites += fmt::format("{}{} x {} (intensity {:.1f})", sites.empty() ? "" : ", ",
+                         site.ordinals.size(), site.name, site.intensity);
+  }
+  return fmt::format(
+      "  partial rejection  exact, independent scenes; sites: {}\n"
+      "                     pilot: {:.1f} rounds and {:.0f} probe runs a hard-core draw, {} of "
+      "draws with the program's counts\n",
+      sites, p.mean_rounds, p.mean_probes, Percent(p.count_acceptance, 1));
+}
+
 std::string FormatOverview(const SamplingStats& stats) {
   const auto& s = stats.summary;
+  if (stats.partial_rejection) {
+    // A scene takes hard-core draws of probe runs (one object each), then one run of the whole
+    // program, which its requirements may reject.
+    return fmt::format(
+               "{}: {} from seed {}, region sampling with --sampler partial-rejection, {}\n\n"
+               "  program runs     {:.2f} a scene ({} in all, {} whole-scene runs rejected), {} "
+               "max\n"
+               "  time per scene   {}  ({:.0f} scenes/s; {} in all)\n",
+               stats.file, FormatCount(s.scenes, "scene"), stats.seed,
+               FormatCount(stats.threads, "thread"), Ratio(s.attempts, s.scenes), s.attempts,
+               s.rejections.total, stats.max_attempts_per_scene,
+               FormatSeconds(Ratio(stats.seconds, s.scenes)), Ratio(s.scenes, stats.seconds),
+               FormatSeconds(stats.seconds)) +
+           FormatPartialRejection(stats);
+  }
   if (stats.gibbs) {
     // A Gibbs scene is not one accepted attempt among several: it takes a sweep of moves,
     // each run of the program a try of one move.
@@ -197,7 +228,24 @@ std::string FormatStatsJson(const SamplingStats& stats, const lang::SourceManage
       {"seconds_per_scene", Ratio(stats.seconds, s.scenes)},
       {"scenes_per_second", Ratio(s.scenes, stats.seconds)},
   };
-  report["sampler"] = stats.gibbs ? "gibbs" : "rejection";
+  report["sampler"] = stats.gibbs               ? "gibbs"
+                      : stats.partial_rejection ? "partial-rejection"
+                                                : "rejection";
+  if (stats.partial_rejection) {
+    const sampling::PartialRejectionPlan& p = *stats.partial_rejection;
+    nlohmann::ordered_json sites = nlohmann::ordered_json::array();
+    for (const sampling::ClutterSite& site : p.sites) {
+      sites.push_back({{"site", site.name},
+                       {"objects", site.ordinals.size()},
+                       {"coordinates", site.coordinates},
+                       {"intensity", site.intensity}});
+    }
+    report["partial_rejection"] = {{"sites", sites},
+                                   {"pilot_draws", p.pilot_draws},
+                                   {"mean_rounds", p.mean_rounds},
+                                   {"mean_probe_runs", p.mean_probes},
+                                   {"count_acceptance", p.count_acceptance}};
+  }
   if (stats.gibbs) {
     const sampling::GibbsPlan& g = *stats.gibbs;
     report["gibbs"] = {

@@ -9,6 +9,7 @@
 #include "lang/source.h"
 #include "sampling/batch.h"
 #include "sampling/gibbs.h"
+#include "sampling/partial_rejection.h"
 
 namespace prs::cli {
 
@@ -19,6 +20,7 @@ struct SamplingStats {
   int threads = 1;
   bool naive = false;
   std::optional<sampling::GibbsPlan> gibbs;  // with --sampler gibbs
+  std::optional<sampling::PartialRejectionPlan> partial_rejection;  // --sampler partial-rejection
   sampling::BatchSummary summary;
   int64_t max_attempts_per_scene = 0;  // the most attempts any one scene took
   double seconds = 0;                  // wall-clock time of the sampling

@@ -61,7 +61,7 @@ void ForEachCell(const SceneObject& o, double reach, Visit visit) {
 
 void Interpreter::CheckCollisions(int index) {
   const SceneObject& o = scene_.objects[index];
-  if (!o.cls->has_box || o.allow_collisions) return;
+  if (!o.cls->has_box || o.allow_collisions || !options_.check_collisions) return;
   CollisionGrid& grid = collision_grid_;
   if (!grid.built && grid.collidable >= std::max(1, options_.collision_grid_from)) BuildGrid(index);
   const double reach = CalcReach(o);
@@ -127,3 +127,12 @@ void Interpreter::RejectCollision(int index, int other) {
 }
 
 }  // namespace prs::lang::internal
+
+namespace prs::lang {
+
+bool DoObjectsCollide(const SceneObject& a, const SceneObject& b, RunCache* cache) {
+  if (!a.cls->has_box || !b.cls->has_box || a.allow_collisions || b.allow_collisions) return false;
+  return internal::DoPlacedObjectsOverlap(a, b, cache);
+}
+
+}  // namespace prs::lang

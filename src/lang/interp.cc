@@ -80,6 +80,7 @@ void Interpreter::RunModule(int module_index) {
   current_module_ = module_index;
   ExecBody(program_.modules[module_index]->ast.body);
   current_module_ = saved;
+  if (stopped_) return;  // a probe run ended inside this module: it did not run to its end
   // A module that imports an unshared one may hold its draws (`from random import *`).
   if (!cacheable || draws_ != draws_before || scene_.objects.size() != objects_before ||
       scene_.params.size() != params_before || imports_unshared_[module_index]) {
@@ -123,6 +124,7 @@ Flow Interpreter::ExecBody(const std::vector<StmtPtr>& body) {
   Flow flow = Flow::kNormal;
   for (const StmtPtr& stmt : body) {
     flow = Exec(*stmt);
+    if (stopped_) flow = Flow::kStop;
     if (flow != Flow::kNormal) break;
   }
   if (!body.empty()) --eval_depth_;
@@ -167,6 +169,7 @@ Flow Interpreter::Exec(const Stmt& stmt) {
   } else if (const auto* node = std::get_if<FromImportStmt>(&stmt.node)) {
     const int target = program_.import_targets.at(node);
     RunModule(target);
+    if (stopped_) return Flow::kStop;
     if (!module_shared_[target]) imports_unshared_[current_module_] = true;
     const ModuleEnv& from = module_envs_[target];
     ModuleEnv& into = module_envs_[current_module_];
@@ -196,7 +199,7 @@ Flow Interpreter::ExecFor(const ForStmt& node, SourceSpan span) {
     }
     const Flow flow = ExecBody(node.body);
     if (flow == Flow::kBreak) break;
-    if (flow == Flow::kReturn) return flow;
+    if (flow == Flow::kReturn || flow == Flow::kStop) return flow;
   }
   return Flow::kNormal;
 }
@@ -206,7 +209,7 @@ Flow Interpreter::ExecWhile(const WhileStmt& node, SourceSpan span) {
     CountLoopIteration(span);
     const Flow flow = ExecBody(node.body);
     if (flow == Flow::kBreak) break;
-    if (flow == Flow::kReturn) return flow;
+    if (flow == Flow::kReturn || flow == Flow::kStop) return flow;
   }
   return Flow::kNormal;
 }
@@ -251,6 +254,7 @@ Value Interpreter::EvalStatementValue(const Expr& expr) {
 }
 
 void Interpreter::ExecRequire(const RequireStmt& node, SourceSpan span) {
+  if (!options_.check_requirements) return;
   if (node.probability) {
     const double p = EvalNumber(*node.probability, "the probability of 'require[p]'");
     if (!(p >= 0 && p <= 1)) {

@@ -17,7 +17,9 @@
 
 namespace prs::lang::internal {
 
-enum class Flow { kNormal, kBreak, kContinue, kReturn };
+// kStop: a probe run's object is made (RunOptions::stop_after_object): every statement, loop
+// and module in progress ends.
+enum class Flow { kNormal, kBreak, kContinue, kReturn, kStop };
 
 using Env = std::unordered_map<std::string, Value>;
 
@@ -103,6 +105,12 @@ struct OpenTurnCheck {
 geometry::OrientedBox BoxOfObject(const SceneObject& o);
 /// Whether the object (its mesh's hull, or its box) lies in `region` within `tolerance` metres.
 bool ObjectInRegion(const geometry::ConvexRegion& region, const SceneObject& o, double tolerance);
+
+/// Whether two placed objects overlap: boxes exactly, a mesh by FCL where the boxes overlap.
+/// `cache` (optional) keeps the meshes' collision shapes (RunCache::colliders).
+bool DoPlacedObjectsOverlap(const SceneObject& a, const SceneObject& b, RunCache* cache);
+/// Whether caches keyed by the object's mesh may hold it (not a one-scene primitive).
+bool IsShapeCachedIn(const SceneObject& o, const RunCache* cache);
 
 /// The collision checks' broad phase: completed collidable objects, by the cells of a
 /// horizontal grid their bounding balls' squares overlap (collisions.cc).
@@ -215,7 +223,9 @@ class Interpreter {
   Value Resample(const Value& v, SourceSpan span);
 
   // --- objects (objects.cc) ---
+  // A creation: skipped, or made (MakeObject), and the end of a probe run (RunOptions).
   Value CreateObject(const ObjectPlan& plan, SourceSpan span);
+  Value MakeObject(const ObjectPlan& plan, SourceSpan span);
   /// Appends a copy of a made object (a template's, a reused one) at this statement, with the
   /// name it is bound to; returns its index. Its scene checks are still to run.
   int AddObjectCopy(const SceneObject& object, SourceSpan span);
@@ -270,9 +280,8 @@ class Interpreter {
   bool RegionContainsObject(const geometry::ConvexRegion& region, int index, double tolerance) const;
   // The object's extent beyond its centre along `normal` (its hull's or box's support).
   double CalcObjectSupport(int index, const Eigen::Vector3d& normal) const;
-  // Whether two placed objects overlap: boxes exactly, a mesh by FCL where the boxes overlap.
+  // Whether two placed objects overlap (DoPlacedObjectsOverlap).
   bool DoObjectsOverlap(int a, int b);
-  std::shared_ptr<const shapes::Collider> ColliderOf(int index);
   // `on X` / `completely on X` where X has a mesh: X's upward-facing surfaces as a union of
   // convex pieces in X's frame (each raised by the object's half height; for `completely`,
   // eroded by the object's hull or box), into c.pieces.
@@ -401,6 +410,8 @@ class Interpreter {
   int eval_depth_ = 0;  // nested Eval calls, across function calls
   int64_t loop_iterations_ = 0;
   int64_t draws_ = 0;
+  size_t creations_ = 0;  // CreateObject calls so far, skipped ones included
+  bool stopped_ = false;  // RunOptions::stop_after_object's object is made
   // Scene coordinates (coordinates.cc): the next unread one, whether the stream took over, and
   // the object property being evaluated (for coordinate names).
   const double* TakeCoordinates(int k, const char* draw, SourceSpan span, int object = -1);

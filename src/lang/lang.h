@@ -150,6 +150,19 @@ struct RunOptions {
   /// The collision checks use a grid once this many collidable objects are made (collisions.cc;
   /// below it, testing each is cheaper). Never changes the scene or the rejection; for tests.
   int collision_grid_from = 32;
+  /// Probe runs of the exact clutter sampler (sampling/partial_rejection.h): an object whose
+  /// creation ordinal (its place among the run's creations, skipped ones counted, from 0) is
+  /// marked true is not made, and its creation evaluates to None. Null: every object is made.
+  const std::vector<bool>* skip_objects = nullptr;
+  /// Probe runs: the run ends once the object of this creation ordinal is made and checked
+  /// against the objects made before it, as if the program ended there (the workspace is still
+  /// checked). Negative: the program runs to its end.
+  int stop_after_object = -1;
+  /// False: `require` statements are not checked (probe runs).
+  bool check_requirements = true;
+  /// False: objects are not tested against one another for overlap (the clutter sampler's
+  /// first run, which only lists the objects a program makes).
+  bool check_collisions = true;
 };
 
 /// What must still hold once a simulator has let the scene's free bodies come to rest
@@ -163,6 +176,11 @@ std::optional<Rejection> CheckSettledScene(const Scene& settled);
 /// `position`, `orientation`, and `yaw`, `pitch`, `roll` relative to the same base
 /// orientation. The object is no longer `fixed`.
 void MoveObject(SceneObject& o, const Eigen::Vector3d& p_WO, const Eigen::Quaterniond& R_WO);
+
+/// Whether two placed objects collide as a run's scene check tests them (spec §6): both have
+/// a box, neither allows collisions, and their shapes overlap (boxes exactly, meshes by FCL).
+/// `cache` (optional, the thread's own) keeps meshes' collision shapes.
+bool DoObjectsCollide(const SceneObject& a, const SceneObject& b, RunCache* cache);
 
 /// The outcome of one attempt: a scene, or the reason it was rejected.
 using AttemptResult = std::variant<Scene, Rejection>;

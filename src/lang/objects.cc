@@ -10,6 +10,21 @@ namespace prs::lang::internal {
 using Eigen::Vector3d;
 
 Value Interpreter::CreateObject(const ObjectPlan& plan, SourceSpan span) {
+  const size_t ordinal = creations_++;
+  if (options_.skip_objects && ordinal < options_.skip_objects->size() &&
+      (*options_.skip_objects)[ordinal]) {
+    pending_name_ = nullptr;
+    return Value();
+  }
+  Value made = MakeObject(plan, span);
+  if (options_.stop_after_object >= 0 &&
+      ordinal == static_cast<size_t>(options_.stop_after_object)) {
+    stopped_ = true;  // the statement ends, then everything around it (Flow::kStop)
+  }
+  return made;
+}
+
+Value Interpreter::MakeObject(const ObjectPlan& plan, SourceSpan span) {
   if (static_cast<int>(scene_.objects.size()) >= options_.limits.max_objects) {
     Fail(span, "limit-exceeded", "more than " + std::to_string(options_.limits.max_objects) +
                                      " objects in one scene; is a loop creating too many?");

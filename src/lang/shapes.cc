@@ -81,12 +81,58 @@ void Interpreter::SetPrimitiveMesh(int index) {
   }
 }
 
-bool Interpreter::IsShapeCached(const SceneObject& o) const {
-  if (!options_.cache) return false;
+bool IsShapeCachedIn(const SceneObject& o, const RunCache* cache) {
+  if (!cache) return false;
   if (!o.primitive || !o.mesh) return true;
-  auto it = options_.cache->primitives.find(
+  auto it = cache->primitives.find(
       std::make_tuple(*o.primitive, o.dimensions.x(), o.dimensions.y(), o.dimensions.z()));
-  return it != options_.cache->primitives.end() && it->second == o.mesh;
+  return it != cache->primitives.end() && it->second == o.mesh;
+}
+
+namespace {
+
+std::shared_ptr<const shapes::Collider> ColliderOfObject(const SceneObject& o, RunCache* cache) {
+  const auto key = o.mesh ? std::make_tuple(o.mesh.get(), o.mesh_scale, 0.0, 0.0)
+                          : std::make_tuple(static_cast<const shapes::MeshShape*>(nullptr),
+                                            o.dimensions.x(), o.dimensions.y(), o.dimensions.z());
+  const bool cached = IsShapeCachedIn(o, cache);
+  if (cached) {
+    auto it = cache->colliders.find(key);
+    if (it != cache->colliders.end()) return it->second;
+  }
+  std::shared_ptr<const shapes::Collider> collider =
+      o.mesh ? shapes::Collider::MakeMesh(*o.mesh, o.mesh_scale, kMeshTouchingM)
+             : shapes::Collider::MakeBox(o.dimensions / 2, kMeshTouchingM);
+  if (cached) cache->colliders.emplace(key, collider);
+  return collider;
+}
+
+}  // namespace
+
+bool DoPlacedObjectsOverlap(const SceneObject& oa, const SceneObject& ob, RunCache* cache) {
+  // Objects whose boxes' circumscribed balls are apart cannot meet (a shape lies in its box):
+  // most pairs of a scene, decided without building either box.
+  const double reach_m = (oa.dimensions.norm() + ob.dimensions.norm()) / 2;
+  if ((oa.p_WO - ob.p_WO).squaredNorm() > reach_m * reach_m) return false;
+  if (!geometry::DoBoxesOverlap(BoxOfObject(oa), BoxOfObject(ob))) return false;
+  if (!oa.mesh && !ob.mesh) return true;
+  // FCL fits its bounding volumes through covariance matrices, which overflow for sizes far
+  // beyond any scene (and it then prints to stderr): such objects keep the boxes' answer,
+  // which holds their shapes, so it is only more cautious.
+  constexpr double kMaxMeshCollisionSizeM = 1e6;
+  if (std::max(oa.dimensions.maxCoeff(), ob.dimensions.maxCoeff()) > kMaxMeshCollisionSizeM) return true;
+  auto pose = [](const SceneObject& o) {
+    Eigen::Isometry3d X = Eigen::Isometry3d::Identity();
+    X.linear() = o.R_WO.toRotationMatrix();
+    X.translation() = o.p_WO;
+    return X;
+  };
+  return shapes::DoCollidersOverlap(*ColliderOfObject(oa, cache), pose(oa),
+                                    *ColliderOfObject(ob, cache), pose(ob));
+}
+
+bool Interpreter::IsShapeCached(const SceneObject& o) const {
+  return IsShapeCachedIn(o, options_.cache);
 }
 
 std::vector<Vector3d> Interpreter::ScaledHull(int index) const {
@@ -132,44 +178,8 @@ double Interpreter::CalcObjectSupport(int index, const Vector3d& normal) const {
   return support;
 }
 
-std::shared_ptr<const shapes::Collider> Interpreter::ColliderOf(int index) {
-  const SceneObject& o = scene_.objects[index];
-  const auto key = o.mesh ? std::make_tuple(o.mesh.get(), o.mesh_scale, 0.0, 0.0)
-                          : std::make_tuple(static_cast<const shapes::MeshShape*>(nullptr),
-                                            o.dimensions.x(), o.dimensions.y(), o.dimensions.z());
-  const bool cached = IsShapeCached(o);
-  if (cached) {
-    auto it = options_.cache->colliders.find(key);
-    if (it != options_.cache->colliders.end()) return it->second;
-  }
-  std::shared_ptr<const shapes::Collider> collider =
-      o.mesh ? shapes::Collider::MakeMesh(*o.mesh, o.mesh_scale, kMeshTouchingM)
-             : shapes::Collider::MakeBox(o.dimensions / 2, kMeshTouchingM);
-  if (cached) options_.cache->colliders.emplace(key, collider);
-  return collider;
-}
-
 bool Interpreter::DoObjectsOverlap(int a, int b) {
-  const SceneObject& oa = scene_.objects[a];
-  const SceneObject& ob = scene_.objects[b];
-  // Objects whose boxes' circumscribed balls are apart cannot meet (a shape lies in its box):
-  // most pairs of a scene, decided without building either box.
-  const double reach_m = (oa.dimensions.norm() + ob.dimensions.norm()) / 2;
-  if ((oa.p_WO - ob.p_WO).squaredNorm() > reach_m * reach_m) return false;
-  if (!geometry::DoBoxesOverlap(BoxOf(a), BoxOf(b))) return false;
-  if (!oa.mesh && !ob.mesh) return true;
-  // FCL fits its bounding volumes through covariance matrices, which overflow for sizes far
-  // beyond any scene (and it then prints to stderr): such objects keep the boxes' answer,
-  // which holds their shapes, so it is only more cautious.
-  constexpr double kMaxMeshCollisionSizeM = 1e6;
-  if (std::max(oa.dimensions.maxCoeff(), ob.dimensions.maxCoeff()) > kMaxMeshCollisionSizeM) return true;
-  auto pose = [](const SceneObject& o) {
-    Eigen::Isometry3d X = Eigen::Isometry3d::Identity();
-    X.linear() = o.R_WO.toRotationMatrix();
-    X.translation() = o.p_WO;
-    return X;
-  };
-  return shapes::DoCollidersOverlap(*ColliderOf(a), pose(oa), *ColliderOf(b), pose(ob));
+  return DoPlacedObjectsOverlap(scene_.objects[a], scene_.objects[b], options_.cache);
 }
 
 void Interpreter::SetOnMeshSurfaces(PositionConstraint& c, int index, int target, bool completely,

@@ -6,6 +6,7 @@
 #include <stdexcept>
 
 #include "sampling/gibbs.h"
+#include "sampling/partial_rejection.h"
 
 namespace prs::sampling {
 
@@ -93,13 +94,28 @@ SceneSampler::SceneSampler(const lang::CompiledProgram& program, SampleOptions o
     d.notes.push_back({{}, false, "leave --sampler gibbs out of this command"});
     throw lang::ScenarioError(std::move(d));
   }
+  if (options_.partial_rejection && (options_.points || options_.gibbs)) {
+    lang::Diagnostic d;
+    d.id = "partial-rejection-unsupported";
+    d.message = options_.gibbs ? "--sampler takes one method, not both gibbs and "
+                                 "partial-rejection"
+                               : "--sampler partial-rejection chooses its own scene coordinates, "
+                                 "so it cannot draw scenes at given points (--design, --like, "
+                                 "--near, prs search, prs estimate, --replay)";
+    d.notes.push_back({{}, false, "leave --sampler partial-rejection out of this command"});
+    throw lang::ScenarioError(std::move(d));
+  }
   if (options_.gibbs) gibbs_ = std::make_unique<GibbsChain>(program_, options_);
+  if (options_.partial_rejection) {
+    partial_ = std::make_unique<PartialRejectionSampler>(program_, options_);
+  }
 }
 
 SceneSampler::~SceneSampler() = default;
 
 SampledScene SceneSampler::Sample(uint64_t seed, uint64_t index) {
   if (gibbs_) return gibbs_->Sample(seed, index);
+  if (partial_) return partial_->Sample(seed, index);
   SampledScene result;
   result.seed = seed;
   result.index = index;

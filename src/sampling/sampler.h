@@ -48,6 +48,8 @@ using SceneTest = std::function<std::optional<lang::Rejection>(lang::Scene&)>;
 
 class GibbsRequest;  // sampling/gibbs.h
 class GibbsChain;
+class PartialRejectionRequest;  // sampling/partial_rejection.h
+class PartialRejectionSampler;
 
 struct SampleOptions {
   lang::RunOptions run;
@@ -64,6 +66,9 @@ struct SampleOptions {
   /// of whole-scene rejection (sampling/gibbs.h); shared by the samplers of a run, which work
   /// out its plan once. Not with `points`.
   std::shared_ptr<GibbsRequest> gibbs;
+  /// Optional (--sampler partial-rejection): exact scenes of clutter by partial rejection
+  /// sampling (sampling/partial_rejection.h); shared like `gibbs`, and not with it or `points`.
+  std::shared_ptr<PartialRejectionRequest> partial_rejection;
 };
 
 /// Rejections of one scene (or many), keyed by (kind, culprit).
@@ -111,6 +116,7 @@ class SceneSampler {
   SampleOptions options_;
   std::unique_ptr<lang::RunCache, lang::RunCacheDeleter> cache_;
   std::unique_ptr<GibbsChain> gibbs_;  // with options_.gibbs
+  std::unique_ptr<PartialRejectionSampler> partial_;  // with options_.partial_rejection
 };
 
 /// Throws "sampling-failed" located at the most frequent culprit of `counts`, with counts per

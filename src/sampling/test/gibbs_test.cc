@@ -16,108 +16,23 @@
 
 #include "geometry/random.h"
 #include "sampling/batch.h"
+#include "sampling/test/law_comparison.h"
 #include "sampling/test/scene_checks.h"
 
 namespace prs::sampling {
 namespace {
 
 using testing_checks::CompileOrDie;
-using testing_checks::KolmogorovSmirnov;
-
-// N objects (5 cm cubes) with any yaw completely on a bin (0.5 x 0.4 m).
-std::string BinProgram(int n, const std::string& cls = "Cube",
-                       const std::string& size = "0.5, with length 0.4") {
-  return "from model import *\n"
-         "bin = Table on V3D(0, 0, 0), with width " +
-         size +
-         "\n"
-         "for i in range(" +
-         std::to_string(n) +
-         "):\n"
-         "    " +
-         cls + " completely on bin, with yaw Range(0, 2 * math.pi)\n";
-}
-
-std::vector<SampledScene> SampleAll(const lang::CompiledProgram& program, SampleOptions sample,
-                                    uint64_t seed, int64_t count, int threads, uint64_t start = 0) {
-  BatchOptions options;
-  options.sample = std::move(sample);
-  options.seed = seed;
-  options.start = start;
-  options.count = count;
-  options.threads = threads;
-  std::vector<SampledScene> scenes;
-  SampleBatch(program, options,
-              {.consume = [&](BatchScene&& s) { scenes.push_back(std::move(s.sampled)); }});
-  return scenes;
-}
+using testing_law::BinProgram;
+using testing_law::Compare;
+using testing_law::Comparison;
+using testing_law::Cubes;
+using testing_law::SampleAll;
 
 SampleOptions Gibbs(GibbsSettings settings = {}) {
   SampleOptions options;
   options.gibbs = std::make_shared<GibbsRequest>(settings);
   return options;
-}
-
-// The objects that move from scene to scene, in the order they were made.
-std::vector<const lang::SceneObject*> Cubes(const lang::Scene& scene) {
-  std::vector<const lang::SceneObject*> cubes;
-  for (const lang::SceneObject& o : scene.objects) {
-    if (!o.fixed) cubes.push_back(&o);
-  }
-  return cubes;
-}
-
-double Yaw(const lang::SceneObject& o) {
-  const Eigen::Vector3d forward = o.R_WO * Eigen::Vector3d::UnitY();
-  return std::atan2(forward.y(), forward.x());
-}
-
-// Statistics of a scene the laws are compared on: the first and last cube's position and yaw,
-// the first two cubes' distance, and the smallest distance between any two cubes.
-std::map<std::string, std::vector<double>> Statistics(const std::vector<SampledScene>& scenes) {
-  std::map<std::string, std::vector<double>> stats;
-  for (const SampledScene& s : scenes) {
-    const auto cubes = Cubes(s.scene);
-    const lang::SceneObject& first = *cubes.front();
-    const lang::SceneObject& last = *cubes.back();
-    stats["first.x"].push_back(first.p_WO.x());
-    stats["first.y"].push_back(first.p_WO.y());
-    stats["last.x"].push_back(last.p_WO.x());
-    stats["last.y"].push_back(last.p_WO.y());
-    stats["first.yaw"].push_back(Yaw(first));
-    stats["dist(first, second)"].push_back((first.p_WO - cubes[1]->p_WO).head<2>().norm());
-    double nearest = INFINITY;
-    for (size_t a = 0; a < cubes.size(); ++a) {
-      for (size_t b = a + 1; b < cubes.size(); ++b) {
-        nearest = std::min(nearest, (cubes[a]->p_WO - cubes[b]->p_WO).head<2>().norm());
-      }
-    }
-    stats["nearest pair"].push_back(nearest);
-  }
-  return stats;
-}
-
-// The two-sample KS statistic's critical value at level 0.001 (Smirnov's asymptotic
-// c(0.001) = 1.949), with the chain's scenes counted as `effective` independent ones.
-double CriticalKs(double n_rejection, double effective) {
-  return 1.949 * std::sqrt((n_rejection + effective) / (n_rejection * effective));
-}
-
-struct Comparison {
-  std::string worst;  // the statistic with the largest D / critical
-  double ratio = 0;   // its D / critical
-};
-
-Comparison Compare(const std::vector<SampledScene>& rejection,
-                   const std::vector<SampledScene>& chain, double effective) {
-  const auto a = Statistics(rejection), b = Statistics(chain);
-  const double critical = CriticalKs(static_cast<double>(rejection.size()), effective);
-  Comparison c;
-  for (const auto& [name, values] : a) {
-    const double ratio = KolmogorovSmirnov(values, b.at(name)) / critical;
-    if (ratio > c.ratio) c = {name, ratio};
-  }
-  return c;
 }
 
 TEST(GibbsTest, EightCubesInABinFollowTheProgramsLaw) {
@@ -147,15 +62,7 @@ TEST(GibbsTest, EightCubesInABinFollowTheProgramsLaw) {
 
 TEST(GibbsTest, ARequirementAndAFixedObstacleKeepTheLaw) {
   // A fixed robot base in the bin, turned, and the first two cubes at least 0.2 m apart.
-  const auto program = CompileOrDie(
-      "from model import *\n"
-      "bin = Table on V3D(0, 0, 0), with width 0.5, with length 0.4\n"
-      "Robot at V3D(0.05, 0, 0.85), with yaw 0.3\n"
-      "a = Cube completely on bin, with yaw Range(0, 2 * math.pi)\n"
-      "b = Cube completely on bin, with yaw Range(0, 2 * math.pi)\n"
-      "for i in range(4):\n"
-      "    Cube completely on bin, with yaw Range(0, 2 * math.pi)\n"
-      "require (distance from a to b) > 0.2\n");
+  const auto program = CompileOrDie(testing_law::kObstacleAndRequirementProgram);
   ASSERT_TRUE(program);
   const auto rejection = SampleAll(*program, {}, 2, 3000, 2);
   SampleOptions gibbs = Gibbs();
@@ -164,15 +71,7 @@ TEST(GibbsTest, ARequirementAndAFixedObstacleKeepTheLaw) {
   const Comparison c = Compare(rejection, chain, plan.CalcEffectiveScenes(3000));
   EXPECT_LT(c.ratio, 1) << c.worst;
   std::printf("KS / critical at 0.001: %.2f (%s)\n", c.ratio, c.worst.c_str());
-  for (const SampledScene& s : chain) {
-    const auto cubes = Cubes(s.scene);
-    ASSERT_GT((cubes[0]->p_WO - cubes[1]->p_WO).norm(), 0.2) << s.index;
-    for (const lang::SceneObject* cube : cubes) {
-      ASSERT_FALSE(
-          testing_checks::BoxesOverlapByPoints(*cube, testing_checks::FindClass(s.scene, "Robot")))
-          << s.index;
-    }
-  }
+  testing_law::ExpectRequirementAndObstacleHold(chain);
 }
 
 TEST(GibbsTest, TheStartAloneFailsTheComparison) {
