@@ -101,9 +101,12 @@ Value Interpreter::CallBuiltin(Builtin id, const std::vector<Value>& args,
         Fail(span, "limit-exceeded", "range of " + Repr(count) + " numbers is longer than the "
                                      "loop limit of one scene");
       }
-      std::vector<Value> items;
-      for (int64_t i = 0; i < static_cast<int64_t>(count); ++i) items.push_back(start + i * step);
-      return MakeList(std::move(items));
+      auto list = std::make_shared<ListData>();  // numbers only: depth 1
+      list->elements.reserve(static_cast<size_t>(count));
+      for (int64_t i = 0; i < static_cast<int64_t>(count); ++i) {
+        list->elements.emplace_back(start + i * step);
+      }
+      return Value(std::move(list));
     }
     case Builtin::kLen: return static_cast<double>(Iterate(args[0], spans[0]).size());
     case Builtin::kAbs:

@@ -183,8 +183,13 @@ Flow Interpreter::Exec(const Stmt& stmt) {
 }
 
 Flow Interpreter::ExecFor(const ForStmt& node, SourceSpan span) {
-  const Value iterable = Eval(*node.iterable);
-  for (const Value& item : Iterate(iterable, node.iterable->span)) {
+  Value iterable = Eval(*node.iterable);
+  // A list no name holds (`range(n)`, a list display) is taken, not copied.
+  auto* list = std::get_if<std::shared_ptr<ListData>>(&iterable.data);
+  const std::vector<Value> items = list && list->use_count() == 1
+                                       ? std::move((*list)->elements)
+                                       : Iterate(iterable, node.iterable->span);
+  for (const Value& item : items) {
     CountLoopIteration(span);
     if (node.targets.size() == 1) {
       Bind(node.targets[0].name, item);
