@@ -52,6 +52,16 @@ std::string DescribeSite(const lang::CompiledProgram& program, const lang::Scene
          ":" + std::to_string(at.column);
 }
 
+// "20 Cube at bin.prs:4:5 and 3 Gear at bin.prs:6:5".
+std::string DescribeCounts(const PartialRejectionPlan& plan) {
+  std::string text;
+  for (size_t s = 0; s < plan.sites.size(); ++s) {
+    if (s > 0) text += s + 1 == plan.sites.size() ? " and " : ", ";
+    text += std::to_string(plan.sites[s].ordinals.size()) + " " + plan.sites[s].name;
+  }
+  return text;
+}
+
 bool ChecksLineOfSight(lang::SpecifierKind kind) {
   return kind == lang::SpecifierKind::kVisibleFrom ||
          kind == lang::SpecifierKind::kCompletelyVisibleFrom ||
@@ -137,10 +147,11 @@ class Engine {
       if (round >= settings_.max_rounds) {
         lang::Diagnostic d;
         d.id = "partial-rejection-too-dense";
+        d.span = plan_.sites.front().span;
         d.message = "--sampler partial-rejection gave up on a draw after " +
                     std::to_string(settings_.max_rounds) +
-                    " rounds of redrawing overlapping objects: the objects are too dense "
-                    "for partial rejection sampling";
+                    " rounds of redrawing overlapping objects: " + DescribeCounts(plan_) +
+                    " are too dense for partial rejection sampling";
         d.notes.push_back({{}, false, "use --sampler gibbs for clutter this dense"});
         throw lang::ScenarioError(std::move(d));
       }
@@ -274,6 +285,7 @@ PartialRejectionPlan FindSites(const lang::CompiledProgram& program, const Sampl
     if (added) {
       ClutterSite site;
       site.name = DescribeSite(program, o);
+      site.span = o.span;
       plan.sites.push_back(site);
     }
     plan.sites[it->second].ordinals.push_back(static_cast<int>(i));
@@ -483,8 +495,10 @@ SampledScene PartialRejectionSampler::Sample(uint64_t seed, uint64_t index) {
   if (result.rejections.total == 0) {
     lang::Diagnostic d;
     d.id = "sampling-failed";
+    d.span = plan.sites.front().span;
     d.message = "--sampler partial-rejection drew " + std::to_string(options_.max_attempts) +
-                " hard-core draws and none held the program's numbers of objects";
+                " hard-core draws and none held the program's numbers of objects (" +
+                DescribeCounts(plan) + ")";
     d.notes.push_back({{}, false, "raise the limit with --max-attempts, or use --sampler gibbs"});
     throw lang::ScenarioError(std::move(d));
   }

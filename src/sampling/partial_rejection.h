@@ -31,6 +31,7 @@ namespace prs::sampling {
 /// intensity its Poisson process is drawn at.
 struct ClutterSite {
   std::string name;           // "Cube at bin.prs:6:5"
+  lang::SourceSpan span;      // its first object's creation
   std::vector<int> ordinals;  // its objects' creation ordinals in a run (lang::RunOptions)
   int coordinates = 0;        // numbers one object draws
   int probe_index = 0;        // where a probe run's scene holds the object

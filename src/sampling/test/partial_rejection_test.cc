@@ -257,6 +257,15 @@ TEST(PartialRejectionTest, TooDenseClutterEndsWithAMessage) {
     FAIL() << "sampled";
   } catch (const lang::ScenarioError& error) {
     EXPECT_EQ(error.diagnostic().id, "partial-rejection-too-dense");
+    EXPECT_NE(
+        error.diagnostic().message.find("rounds of redrawing overlapping objects: 40 Cube at "),
+        std::string::npos)
+        << error.diagnostic().message;
+    EXPECT_EQ(
+        program->sources.CalcLineColumn(error.diagnostic().span.file, error.diagnostic().span.begin)
+            .line,
+        4u)
+        << "at the cubes' creation";
     EXPECT_NE(error.diagnostic().notes.back().message.find("--sampler gibbs"), std::string::npos);
   }
 }
