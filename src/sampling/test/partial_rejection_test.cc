@@ -1,7 +1,8 @@
 // --sampler partial-rejection: its scenes follow the program's law exactly (two-sample tests
-// against whole-scene rejection: eight cubes in a bin; cubes and gears together; a fixed
-// obstacle and a requirement), scenes are the same for any thread count, its Poisson counts
-// are right, and programs outside its reach are refused with a located message.
+// against whole-scene rejection, 3,000 scenes a side in the Release build: eight cubes in a
+// bin; cubes and gears together; a fixed obstacle and a requirement), scenes are the same for
+// any thread count, its Poisson counts are right, and programs outside its reach are refused
+// with a located message.
 #include "sampling/partial_rejection.h"
 
 #include <gtest/gtest.h>
@@ -25,6 +26,7 @@ using testing_law::ChiSquareRatio;
 using testing_law::Compare;
 using testing_law::Comparison;
 using testing_law::Cubes;
+using testing_law::kLawScenes;
 using testing_law::SampleAll;
 
 SampleOptions PartialRejection() {
@@ -81,9 +83,9 @@ TEST(PartialRejectionTest, PoissonCountsHaveTheirMeanAndVariance) {
 TEST(PartialRejectionTest, EightCubesInABinFollowTheProgramsLaw) {
   const auto program = CompileOrDie(BinProgram(8));
   ASSERT_TRUE(program);
-  const auto rejection = SampleAll(*program, {}, 1, 3000, 2);
+  const auto rejection = SampleAll(*program, {}, 1, kLawScenes, 2);
   SampleOptions partial = PartialRejection();
-  const auto exact = SampleAll(*program, partial, 1, 3000, 2);
+  const auto exact = SampleAll(*program, partial, 1, kLawScenes, 2);
   const PartialRejectionPlan plan = *partial.partial_rejection->plan();
   ASSERT_EQ(plan.sites.size(), 1u) << "one site, in the loop";
   EXPECT_EQ(plan.sites[0].ordinals.size(), 8u);
@@ -105,9 +107,9 @@ TEST(PartialRejectionTest, TwoKindsTogetherFollowTheProgramsLaw) {
       "for i in range(2):\n"
       "    Gear completely on bin, with yaw Range(0, 2 * math.pi)\n");
   ASSERT_TRUE(program);
-  const auto rejection = SampleAll(*program, {}, 3, 3000, 2);
+  const auto rejection = SampleAll(*program, {}, 3, kLawScenes, 2);
   SampleOptions partial = PartialRejection();
-  const auto exact = SampleAll(*program, partial, 3, 3000, 2);
+  const auto exact = SampleAll(*program, partial, 3, kLawScenes, 2);
   EXPECT_EQ(partial.partial_rejection->plan()->sites.size(), 2u);
   ExpectSameLaw(rejection, exact);
   ExpectNoOverlaps(exact);
@@ -118,9 +120,9 @@ TEST(PartialRejectionTest, ARequirementAndAFixedObstacleKeepTheLaw) {
   // robot enters every probe, the requirement only the whole run.
   const auto program = CompileOrDie(testing_law::kObstacleAndRequirementProgram);
   ASSERT_TRUE(program);
-  const auto rejection = SampleAll(*program, {}, 2, 3000, 2);
+  const auto rejection = SampleAll(*program, {}, 2, kLawScenes, 2);
   SampleOptions partial = PartialRejection();
-  const auto exact = SampleAll(*program, partial, 2, 3000, 2);
+  const auto exact = SampleAll(*program, partial, 2, kLawScenes, 2);
   EXPECT_EQ(partial.partial_rejection->plan()->sites.size(), 1u)
       << "a, b and the loop's cubes are made by the same text: one site of six objects";
   ExpectSameLaw(rejection, exact);
