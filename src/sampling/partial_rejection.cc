@@ -81,20 +81,7 @@ class Engine {
   Engine(const lang::CompiledProgram& program, const SampleOptions& options,
          const PartialRejectionPlan& plan, const PartialRejectionSettings& settings,
          lang::RunCache* cache)
-      : program_(program), options_(options), plan_(plan), settings_(settings), cache_(cache) {
-    int ordinals = 0;
-    for (const ClutterSite& site : plan.sites) {
-      for (int o : site.ordinals) ordinals = std::max(ordinals, o + 1);
-    }
-    for (size_t s = 0; s < plan.sites.size(); ++s) {
-      std::vector<bool> skip(static_cast<size_t>(ordinals), false);
-      for (const ClutterSite& other : plan.sites) {
-        for (int o : other.ordinals) skip[static_cast<size_t>(o)] = true;
-      }
-      skip[static_cast<size_t>(plan.sites[s].ordinals.front())] = false;
-      skips_.push_back(std::move(skip));
-    }
-  }
+      : program_(program), options_(options), plan_(plan), settings_(settings), cache_(cache) {}
 
   // The object of site `s` made alone beside the fixed objects from the numbers u, or nullopt
   // when that run is rejected (the object does not fit on its own).
@@ -104,17 +91,16 @@ class Engine {
     lang::RunOptions run = options_.run;
     run.cache = cache_;
     const ClutterSite& site = plan_.sites[static_cast<size_t>(s)];
-    run.skip_objects = &skips_[static_cast<size_t>(s)];
+    run.skip_objects = &site.probe_skips;
     run.stop_after_object = site.ordinals.front();
     run.check_requirements = false;
     run.record_regions = false;
-    run.coordinates = {u, plan_.sites[static_cast<size_t>(s)].coordinates};
+    run.coordinates = {u, site.coordinates};
     const geometry::Rng before(kPilotSeed, kProbeStream);
     geometry::Rng rng = before;
     lang::AttemptResult attempt = lang::RunAttempt(program_, rng, run);
     if (!IsSameStream(before, rng)) {
-      ThrowUnsupported(plan_.sites[static_cast<size_t>(s)].name +
-                       " draws a varying number of numbers");
+      ThrowUnsupported(site.name + " draws a varying number of numbers");
     }
     auto* scene = std::get_if<lang::Scene>(&attempt);
     if (!scene) return std::nullopt;
@@ -200,7 +186,6 @@ class Engine {
   const PartialRejectionPlan& plan_;
   const PartialRejectionSettings& settings_;
   lang::RunCache* cache_;
-  std::vector<std::vector<bool>> skips_;  // per site: the creations its probe leaves out
   int64_t runs_ = 0;
   int64_t rounds_ = 0;
 };
@@ -328,8 +313,8 @@ PartialRejectionPlan FindSites(const lang::CompiledProgram& program, const Sampl
   }
   int drawn = 0;
   for (ClutterSite& site : plan.sites) {
-    std::vector<bool> skip = skip_all;
-    skip[static_cast<size_t>(site.ordinals.front())] = false;
+    site.probe_skips = skip_all;
+    site.probe_skips[static_cast<size_t>(site.ordinals.front())] = false;
     site.probe_index = 0;
     for (size_t k = 0; k < fixed_ordinals.size(); ++k) {
       if (fixed_ordinals[k] < site.ordinals.front()) {
@@ -339,7 +324,7 @@ PartialRejectionPlan FindSites(const lang::CompiledProgram& program, const Sampl
       }
     }
     std::vector<lang::CoordinateInfo> site_log;
-    probe.skip_objects = &skip;
+    probe.skip_objects = &site.probe_skips;
     probe.stop_after_object = site.ordinals.front();
     probe.coordinates = {nullptr, 0, &site_log};
     geometry::Rng rng(kPilotSeed, kProbeStream);

@@ -35,6 +35,9 @@ struct ClutterSite {
   std::vector<int> ordinals;  // its objects' creation ordinals in a run (lang::RunOptions)
   int coordinates = 0;        // numbers one object draws
   int probe_index = 0;        // where a probe run's scene holds the object
+  /// The creations a probe run leaves out (lang::RunOptions::skip_objects): every other
+  /// site's and all but this site's first.
+  std::vector<bool> probe_skips;
   /// The fixed objects made after the site's first creation: a probe run ends once its object
   /// is made, so the sampler checks it against these itself.
   std::vector<lang::SceneObject> later_fixed;
