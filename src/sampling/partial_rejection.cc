@@ -100,7 +100,7 @@ class Engine {
     geometry::Rng rng = before;
     lang::AttemptResult attempt = lang::RunAttempt(program_, rng, run);
     if (!IsSameStream(before, rng)) {
-      ThrowUnsupported(site.name + " draws a varying number of numbers");
+      ThrowUnsupported(site.name + " draws a varying number of numbers", site.span);
     }
     auto* scene = std::get_if<lang::Scene>(&attempt);
     if (!scene) return std::nullopt;
@@ -458,7 +458,8 @@ SampledScene PartialRejectionSampler::Sample(uint64_t seed, uint64_t index) {
             slots[static_cast<size_t>(s)][static_cast<size_t>(j)]->object;
         if (made.p_WO != probed.p_WO || made.R_WO.coeffs() != probed.R_WO.coeffs()) {
           ThrowUnsupported(plan.sites[static_cast<size_t>(s)].name +
-                           " makes a different object alone than in the whole scene");
+                               " makes a different object alone than in the whole scene",
+                           plan.sites[static_cast<size_t>(s)].span);
         }
       }
       std::optional<lang::Rejection> failed =
