@@ -155,24 +155,29 @@ TEST_F(PrsTest, PersistentWorkersServeEveryGenerationOfASearchAndACampaignShard)
            "--batch", "20", "--threads", "2", "-o", (dir_ / "search.jsonl").string()});
   ASSERT_EQ(r.exit_code, 0) << r.err;
   EXPECT_EQ(ReadRecords(dir_ / "search.jsonl").size(), 60u);
-  std::vector<json> starts;
   const auto count_starts = [&] {
     std::ifstream in(log);
     int n = 0;
     for (std::string line; std::getline(in, line);) n += line.starts_with("start ");
     return n;
   };
-  EXPECT_EQ(count_starts(), 2) << "two workers for three generations";
+  // Workers start when a thread first needs one, so a thread that finds the queue empty starts
+  // none: the counts are bounds (one process per episode would start 60 here), not exact.
+  const int search_starts = count_starts();
+  EXPECT_GE(search_starts, 1);
+  EXPECT_LE(search_starts, 2) << "at most two workers (one per thread) for three generations";
 
   const std::string dir = (dir_ / "campaign").string();
   r = Run({"campaign", "init", dir, Example("table_cube.prs"), "--exec", command, "--persistent",
            "-n", "12", "--shard-size", "6", "-s", "7"});
   ASSERT_EQ(r.exit_code, 0) << r.err;
   for (const char* k : {"1", "0"}) {
+    const int before = count_starts();
     r = Run({"campaign", "run-shard", dir, k, "--threads", "2"});
     ASSERT_EQ(r.exit_code, 0) << r.err;
+    EXPECT_GE(count_starts() - before, 1) << "shard " << k;
+    EXPECT_LE(count_starts() - before, 2) << "at most two workers for shard " << k;
   }
-  EXPECT_EQ(count_starts(), 2 + 4) << "two workers per shard";
   r = Run({"campaign", "merge", dir, "-o", (dir_ / "merged.jsonl").string()});
   ASSERT_EQ(r.exit_code, 0) << r.err;
   r = Run({"test", Example("table_cube.prs"), "--exec", command, "-n", "12", "-s", "7", "-o",
