@@ -16,6 +16,16 @@ namespace {
 // The world's extent (MuJoCo's stat.extent) in metres: see WriteWorldMjcf.
 constexpr double kWorldExtentM = 3.0;
 
+// The simulated camera's offscreen buffer, the size of the largest image a controller renders
+// (the case study's 640 x 480; the original's 256 x 256 fits), and its shadow map, the size
+// `prs render`'s pictures use (MuJoCo's default is 4096). Both are rendered on the CPU by
+// Mesa's llvmpipe, one picture at a time per process (its rasterizer is shared by every
+// context): a larger buffer is cleared for nothing, and the 4096² shadow map cost 12 % of an
+// episode while moving only shadow-edge pixels (docs/benchmarks.md, the case study).
+constexpr int kCameraBufferWidthPx = 640;
+constexpr int kCameraBufferHeightPx = 480;
+constexpr int kShadowMapSizePx = 2048;
+
 using internal::FormatQuat;
 using internal::FormatVector;
 
@@ -104,8 +114,10 @@ std::string WriteWorldMjcf(const exporting::ExportScene& scene) {
   }
   std::string xml = exporting::WriteScene(WithoutRobotGeometry(scene), exporting::Format::kMjcf);
   InsertBefore(xml, "</worldbody>", bodies);
-  // Offscreen buffers big enough for the camera images the controller renders.
-  InsertBefore(xml, "</mujoco>", "<visual><global offwidth=\"1280\" offheight=\"960\"/></visual>");
+  InsertBefore(xml, "</mujoco>",
+               fmt::format("<visual><global offwidth=\"{}\" offheight=\"{}\"/>"
+                           "<quality shadowsize=\"{}\"/></visual>",
+                           kCameraBufferWidthPx, kCameraBufferHeightPx, kShadowMapSizePx));
   // One extent for every scene (MuJoCo would compute 2.97-3.13 m for Table-Cube's, from where
   // the objects lie): the cameras' clipping planes, the shadows and the ground's grid are then
   // the same in every episode, and one render context serves them all (render/context_key.h).
