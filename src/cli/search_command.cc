@@ -67,6 +67,8 @@ int RunAndReport(const lang::CompiledProgram& program, const harness::Controller
       PrintNote(FormatSearchVerdict(summary, options.strategy) +
                 fmt::format("; {} generations of {} on {}", summary.generations, summary.batch,
                             FormatCount(summary.threads, "thread")));
+      const std::string batch_note = FormatBatchUseNote(summary.batch, summary.threads);
+      if (!batch_note.empty()) PrintNote(batch_note);
     }
     return args.save_failures_dir.empty()
                ? kExitSuccess

@@ -45,6 +45,20 @@ std::string FormatSearchVerdict(const search::SearchSummary& summary, search::St
   return text;
 }
 
+std::string FormatBatchUseNote(int64_t batch, int threads) {
+  if (threads <= 1 || batch <= 0) return "";
+  const int64_t waves = (batch + threads - 1) / threads;
+  const int64_t slots = waves * threads;
+  const double busy = static_cast<double>(batch) / static_cast<double>(slots);
+  if (busy >= 0.9) return "";
+  return fmt::format(
+      "generations of {} run on {} threads in {} waves, the last of {}: the threads are busy "
+      "about {:.0f}% of the time; --batch {} keeps them all busy (the records depend on the "
+      "batch, not on the thread count)",
+      batch, threads, waves, FormatCount(batch - (waves - 1) * threads, "episode"), 100 * busy,
+      slots);
+}
+
 std::string FormatCoordinateTable(const std::vector<lang::CoordinateInfo>& coordinates,
                                   const lang::SourceManager& sources) {
   TextTable table({"#", "coordinate", "draw", "source"}, "rlll");

@@ -1,10 +1,12 @@
-// Unit tests of the pieces behind `prs check` and `prs stats`: text tables, the progress
-// line, and the stats report in both forms (the outline and variation are in src/analysis).
+// Unit tests of the pieces behind `prs check`, `prs stats` and `prs search`: text tables, the
+// progress line, the stats report in both forms (the outline and variation are in
+// src/analysis), and the search's note on idle threads.
 #include <gtest/gtest.h>
 
 #include <nlohmann/json.hpp>
 
 #include "cli/progress.h"
+#include "cli/search_report.h"
 #include "cli/stats_report.h"
 #include "cli/text_table.h"
 
@@ -19,6 +21,23 @@ TEST(TextTableTest, AlignsColumnsByCodePoints) {
             "  name    count  kind\n"
             "  a           5  plane ∩ half-spaces\n"
             "  longer  12345\n");
+}
+
+// 20 episodes on 16 threads: a wave of 16, then 4 with 12 threads idle (20 / 32 = 62.5 %).
+TEST(BatchUseNoteTest, NamesTheIdleShareAndTheBatchThatFillsEveryThread) {
+  const std::string note = FormatBatchUseNote(20, 16);
+  EXPECT_NE(note.find("generations of 20 run on 16 threads in 2 waves, the last of 4 episodes"),
+            std::string::npos)
+      << note;
+  EXPECT_NE(note.find("busy about 62% of the time"), std::string::npos) << note;
+  EXPECT_NE(note.find("--batch 32 keeps them all busy"), std::string::npos) << note;
+  EXPECT_NE(FormatBatchUseNote(100, 64).find("--batch 128"), std::string::npos);
+  // Nothing to say: one thread, a multiple of the threads, or at least 90 % busy.
+  for (const auto& [batch, threads] :
+       {std::pair{20, 1}, {32, 16}, {20, 2}, {200, 16}, {19, 2}, {37, 4}}) {
+    EXPECT_EQ(FormatBatchUseNote(batch, threads), "") << batch << " on " << threads;
+  }
+  EXPECT_NE(FormatBatchUseNote(17, 16), "") << "17 on 16: 53 % busy";
 }
 
 TEST(ProgressLineTest, FitsTheWidthAndShowsTheCounts) {

@@ -24,7 +24,15 @@ TEST_F(PrsTest, SearchWritesRecordsTheSameForAnyThreadCount) {
     EXPECT_NE(r.out.find("planted-failure"), std::string::npos) << r.out;
     EXPECT_NE(r.out.find("generation"), std::string::npos) << r.out;
     EXPECT_NE(r.err.find("ce found"), std::string::npos) << r.err;
+    EXPECT_EQ(r.err.find("waves"), std::string::npos) << "20 a generation fill 1 or 2 threads";
   }
+  // 16 threads for generations of 20: the second wave leaves 12 of them idle, and prs says so.
+  const Result wide = Run({"search", Example("table_cube.prs"), "--controller", "planted-1-percent",
+                           "--budget", "40", "-s", "4", "--threads", "16"});
+  ASSERT_EQ(wide.exit_code, 0) << wide.err;
+  EXPECT_NE(wide.err.find("generations of 20 run on 16 threads in 2 waves"), std::string::npos)
+      << wide.err;
+  EXPECT_NE(wide.err.find("--batch 32 keeps them all busy"), std::string::npos) << wide.err;
   std::vector<json> a = ReadRecords(one), b = ReadRecords(two);
   ASSERT_EQ(a.size(), 200u);
   for (std::vector<json>* records : {&a, &b}) {
