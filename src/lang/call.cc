@@ -1,5 +1,6 @@
 // Calls: user functions (with the call-depth limit), built-in helpers, the math module,
 // vector and region methods. Distributions and region constructors are in call_random.cc.
+#include <bit>
 #include <cmath>
 
 #include "lang/interp_internal.h"
@@ -12,6 +13,8 @@ Value Interpreter::EvalCall(const CallExpr& call, SourceSpan span) {
   const Value callee = Eval(*call.callee);
   std::vector<Value> args;
   std::vector<SourceSpan> spans;
+  args.reserve(call.args.size());
+  spans.reserve(call.args.size());
   for (const CallArg& arg : call.args) {
     args.push_back(Eval(*arg.value));
     spans.push_back(arg.value->span);
@@ -24,6 +27,9 @@ Value Interpreter::EvalCall(const CallExpr& call, SourceSpan span) {
       Fail(span, "wrong-argument-count",
            std::string(info.name) + " was given " + std::to_string(n) + " arguments; call it as " +
                info.signature);
+    }
+    if (options_.cache && builtin->id >= Builtin::kCuboid && builtin->id <= Builtin::kEmpty) {
+      return CallRegionKept(call, builtin->id, args, spans, span);
     }
     return CallBuiltin(builtin->id, args, spans, span);
   }
@@ -39,6 +45,51 @@ Value Interpreter::EvalCall(const CallExpr& call, SourceSpan span) {
              callee.As<const ClassInfo*>()->name + " with PROP VALUE, at V, on X, ...'");
   }
   Fail(call.callee->span, "type-error", "a " + TypeName(callee) + " cannot be called");
+}
+
+namespace {
+
+// The bits of plain arguments (numbers, vectors, orientations), each after a tag for its type;
+// false for any other argument.
+bool AppendArgumentBits(const std::vector<Value>& args, std::vector<uint64_t>& bits) {
+  auto append = [&](double x) { bits.push_back(std::bit_cast<uint64_t>(x)); };
+  for (const Value& arg : args) {
+    if (const auto* x = std::get_if<double>(&arg.data)) {
+      bits.push_back(0);
+      append(*x);
+    } else if (const auto* v = std::get_if<Vector3d>(&arg.data)) {
+      bits.push_back(1);
+      for (int i = 0; i < 3; ++i) append((*v)[i]);
+    } else if (const auto* o = std::get_if<Orientation>(&arg.data)) {
+      bits.push_back(2);
+      for (const double c : o->R_WF.coeffs()) append(c);
+    } else {
+      return false;
+    }
+  }
+  return true;
+}
+
+}  // namespace
+
+Value Interpreter::CallRegionKept(const CallExpr& call, Builtin id, const std::vector<Value>& args,
+                                  const std::vector<SourceSpan>& spans, SourceSpan span) {
+  std::vector<uint64_t> bits;
+  if (!AppendArgumentBits(args, bits)) return CallBuiltin(id, args, spans, span);
+  RunCache& cache = *options_.cache;
+  const auto found = cache.region_calls.find(&call);
+  if (found != cache.region_calls.end()) {
+    RunCache::RegionCall& kept = found->second;
+    if (!kept.varying && kept.argument_bits == bits) return kept.region;
+    kept.varying = true;
+    return CallBuiltin(id, args, spans, span);
+  }
+  Value region = CallBuiltin(id, args, spans, span);  // may throw: nothing is kept then
+  if (region.Is<RegionPtr>()) {
+    cache.kept_regions.insert(region.As<RegionPtr>().get());
+    cache.region_calls.emplace(&call, RunCache::RegionCall{std::move(bits), region.As<RegionPtr>()});
+  }
+  return region;
 }
 
 Value Interpreter::CallFunction(const FunctionRef& fn, const CallExpr& call,

@@ -349,7 +349,11 @@ void FixedAnalysis::MarkPlan(ObjectPlan& plan, int m) {
     auto it = props.find(p);
     shape_fixed = shape_fixed && (it == props.end() || it->second);
   }
-  plan.region_fixed = plan.fold_workspace && shape_fixed && region_inputs_fixed;
+  // The region is folded with the module's workspace as bound here (placement.cc): the same in
+  // every scene only when that is.
+  const auto workspace = envs_[m].find("workspace");
+  const bool workspace_fixed = workspace == envs_[m].end() || workspace->second.fixed;
+  plan.region_fixed = plan.fold_workspace && shape_fixed && region_inputs_fixed && workspace_fixed;
   bool all_fixed = true;
   for (const auto& [name, fixed] : props) all_fixed = all_fixed && fixed;
   plan.object_fixed = all_fixed;

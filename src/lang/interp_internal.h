@@ -212,6 +212,10 @@ class Interpreter {
                          const std::vector<SourceSpan>& spans, SourceSpan span);
   Value CallRegion(Builtin id, const std::vector<Value>& args,
                    const std::vector<SourceSpan>& spans, SourceSpan span);
+  // CallRegion through RunCache::region_calls: the region this call made before when its
+  // arguments are the same bits (call.cc).
+  Value CallRegionKept(const CallExpr& call, Builtin id, const std::vector<Value>& args,
+                       const std::vector<SourceSpan>& spans, SourceSpan span);
   Value CallMath(Builtin id, const std::vector<Value>& args, const std::vector<SourceSpan>& spans,
                  SourceSpan span);
   Value CallFunction(const FunctionRef& fn, const CallExpr& call, std::vector<Value> args,
@@ -290,7 +294,9 @@ class Interpreter {
   std::string DescribeBox(int index) const;  // "c (0.05 x 0.05 x 0.05 m at (x, y, z))"
   const geometry::ConvexRegion* Workspace() const;
   const RegionPtr* FindWorkspace() const;  // null when `workspace` is not a region
-  bool IsWorkspaceKept() const;  // the current module's workspace is from a shared module
+  // The current module's workspace lives as long as the cache: bound by a shared module, or
+  // a region of RunCache::region_calls.
+  bool IsWorkspaceKept() const;
 
   // --- placement (placement.cc) ---
   Eigen::Vector3d PlacePosition(const ObjectPlan& plan, int index, SourceSpan span);

@@ -268,11 +268,15 @@ const RegionPtr* Interpreter::FindWorkspace() const {
   return &workspace->As<RegionPtr>();
 }
 
-// A workspace bound by a shared module (ModuleEnv::shared) is the same region in every scene
-// and lives as long as the cache: what is worked out from it may be kept there.
+// A workspace bound by a shared module (ModuleEnv::shared), or made by a region call with the
+// same arguments in every scene (RunCache::region_calls), is the same region in every scene and
+// lives as long as the cache: what is worked out from it may be kept there.
 bool Interpreter::IsWorkspaceKept() const {
   static const std::string kWorkspace = "workspace";
-  return options_.cache && module_envs_[current_module_].IsFromSharedLayer(kWorkspace);
+  if (!options_.cache) return false;
+  if (module_envs_[current_module_].IsFromSharedLayer(kWorkspace)) return true;
+  const RegionPtr* workspace = FindWorkspace();
+  return workspace && options_.cache->kept_regions.count(workspace->get()) > 0;
 }
 
 // Every object's whole box inside the workspace (spec §6), checked once the program has run.

@@ -68,6 +68,19 @@ class RunCache {
   /// (empty, unbounded, with balls).
   std::map<std::pair<const ObjectPlan*, uint64_t>, std::shared_ptr<const OnKeptPlacement>>
       on_kept;
+  /// Region constructors called with plain numbers, vectors and orientations (a main-module
+  /// `workspace = Cuboid(...)`), by call: the region the first call made, and the bits of its
+  /// arguments. A later call with the same bits gets that region again, which lives as long as
+  /// this cache, so what is worked out from it may be kept like a shared module's workspace
+  /// (`kept_regions`). A call that once gets other arguments is `varying` and makes its region
+  /// anew from then on (its first region stays alive, so no other region takes its address).
+  struct RegionCall {
+    std::vector<uint64_t> argument_bits;
+    RegionPtr region;
+    bool varying = false;
+  };
+  std::unordered_map<const CallExpr*, RegionCall> region_calls;
+  std::set<const geometry::ConvexRegion*> kept_regions;
   /// Collision shapes of meshes (by mesh and scale) and of boxes that meet a mesh (by size).
   std::map<std::tuple<const shapes::MeshShape*, double, double, double>,
            std::shared_ptr<const shapes::Collider>> colliders;

@@ -9,6 +9,7 @@
 #include <string>
 #include <vector>
 
+#include "lang/run_cache.h"
 #include "sampling/test/scene_checks.h"
 
 namespace prs::sampling {
@@ -39,6 +40,18 @@ void ExpectSameScene(const SampledScene& a, const SampledScene& b) {
   ASSERT_EQ(a.scene.params.size(), b.scene.params.size());
   for (size_t p = 0; p < a.scene.params.size(); ++p) {
     EXPECT_EQ(lang::Repr(a.scene.params[p].second), lang::Repr(b.scene.params[p].second));
+  }
+}
+
+// The first accepted attempt of scene `index` (seed 5), run with `cache`.
+Scene RunUntilAccepted(const lang::CompiledProgram& program, uint64_t index,
+                       lang::RunCache* cache) {
+  geometry::Rng rng(5, index);
+  lang::RunOptions options;
+  options.cache = cache;
+  for (;;) {
+    lang::AttemptResult result = lang::RunAttempt(program, rng, options);
+    if (auto* scene = std::get_if<Scene>(&result)) return std::move(*scene);
   }
 }
 
@@ -139,6 +152,74 @@ TEST(KeptWorkTest, OnAMovedRegionIsUniformAndExact) {
   const double critical = 1.63 * std::sqrt(2.0 / kScenes);
   EXPECT_LT(KolmogorovSmirnov(u_x, uniform), critical);
   EXPECT_LT(KolmogorovSmirnov(u_y, uniform), critical);
+}
+
+// A region call with the same arguments in every run (kOnPrograms' main-module workspace) gives
+// one region that lives in the thread's cache, so the workspace is kept (its erosions reused);
+// a call whose arguments change within a run makes each region anew. Scenes are those of a
+// sampler that keeps nothing.
+TEST(KeptWorkTest, RegionCallsWithTheSameArgumentsGiveOneKeptRegion) {
+  auto constant = CompileOrDie(kOnPrograms);
+  auto looped = CompileOrDie("from model import *\n"
+                             "for i in range(3):\n"
+                             "    Cube in Cuboid(Vector3D(i - 1, 0, 0.5), Vector3D(0, 0, 0), "
+                             "0.3, 0.3, 0.3)\n");
+  ASSERT_TRUE(constant && looped);
+  lang::RunCache cache;
+  const Scene first = RunUntilAccepted(*constant, 0, &cache);
+  const Scene second = RunUntilAccepted(*constant, 1, &cache);
+  ASSERT_TRUE(first.workspace && second.workspace);
+  EXPECT_EQ(first.workspace.get(), second.workspace.get()) << "one region for both scenes";
+  EXPECT_EQ(cache.kept_regions.count(first.workspace.get()), 1u);
+  for (const auto& [call, kept] : cache.region_calls) EXPECT_FALSE(kept.varying);
+  EXPECT_FALSE(cache.eroded_workspaces.empty()) << "the kept workspace's erosions are kept";
+
+  lang::RunCache looped_cache;
+  for (uint64_t i = 0; i < 20; ++i) {
+    const Scene scene = RunUntilAccepted(*looped, i, &looped_cache);
+    ASSERT_EQ(scene.objects.size(), 3u);
+    for (int k = 0; k < 3; ++k) {
+      EXPECT_LE(std::abs(scene.objects[k].p_WO.x() - (k - 1)), 0.15 + 1e-9) << "cube " << k;
+    }
+  }
+  SampleOptions plain;
+  plain.use_run_cache = false;
+  for (const auto* program : {constant.get(), looped.get()}) {
+    SceneSampler kept(*program), fresh(*program, plain);
+    for (uint64_t i = 0; i < 100; ++i) ExpectSameScene(kept.Sample(7, i), fresh.Sample(7, i));
+  }
+}
+
+// A workspace of drawn size: each scene folds its own into the cube's region. The position
+// sampler of a region fixed in every scene (ObjectPlan::region_fixed) was kept with the first
+// scene's workspace, so with seed 7 no cube lay more than 0.58 m from the centre in 2,000
+// scenes. The law is rejection's: P(|x| > 0.5) = 0.2025 / 0.7 = 0.289 (x uniform on the 3 m
+// floor, kept when the cube fits the workspace of width w ~ U(1, 2)).
+TEST(KeptWorkTest, AWorkspaceOfDrawnSizeIsFoldedAnewInEveryScene) {
+  auto drawn = CompileOrDie("from model import *\n"
+                            "workspace = Cuboid(Vector3D(0, 0, 1), Vector3D(0, 0, 0), "
+                            "Range(1, 2), 1, 2)\n"
+                            "Cube on floor\n");
+  ASSERT_NE(drawn, nullptr);
+  lang::RunCache cache;
+  const Scene a = RunUntilAccepted(*drawn, 0, &cache), b = RunUntilAccepted(*drawn, 1, &cache);
+  EXPECT_NE(a.workspace->CalcVertices(), b.workspace->CalcVertices()) << "widths drawn apart";
+  EXPECT_EQ(cache.kept_regions.count(b.workspace.get()), 0u);
+  for (const auto& [key, eroded] : cache.eroded_workspaces) {
+    EXPECT_NE(key.first, b.workspace.get()) << "a workspace made anew is not kept";
+  }
+  SampleOptions plain;
+  plain.use_run_cache = false;
+  SceneSampler kept(*drawn), fresh(*drawn, plain);
+  constexpr int kScenes = 4000;
+  int far = 0;
+  for (uint64_t i = 0; i < kScenes; ++i) {
+    const SampledScene scene = kept.Sample(7, i);
+    if (i < 100) ExpectSameScene(scene, fresh.Sample(7, i));
+    far += std::abs(scene.scene.objects[0].p_WO.x()) > 0.5;
+  }
+  const double p = 0.2025 / 0.7, se = std::sqrt(p * (1 - p) / kScenes);
+  EXPECT_NEAR(static_cast<double>(far) / kScenes, p, 4 * se);
 }
 
 // `from M import *` binds M's globals over what the module bound before, and later bindings
