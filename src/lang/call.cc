@@ -87,7 +87,8 @@ Value Interpreter::CallRegionKept(const CallExpr& call, Builtin id, const std::v
   Value region = CallBuiltin(id, args, spans, span);  // may throw: nothing is kept then
   if (region.Is<RegionPtr>()) {
     cache.kept_regions.insert(region.As<RegionPtr>().get());
-    cache.region_calls.emplace(&call, RunCache::RegionCall{std::move(bits), region.As<RegionPtr>()});
+    cache.region_calls.emplace(&call,
+                               RunCache::RegionCall{std::move(bits), region.As<RegionPtr>()});
   }
   return region;
 }

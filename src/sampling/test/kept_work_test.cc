@@ -160,10 +160,11 @@ TEST(KeptWorkTest, OnAMovedRegionIsUniformAndExact) {
 // sampler that keeps nothing.
 TEST(KeptWorkTest, RegionCallsWithTheSameArgumentsGiveOneKeptRegion) {
   auto constant = CompileOrDie(kOnPrograms);
-  auto looped = CompileOrDie("from model import *\n"
-                             "for i in range(3):\n"
-                             "    Cube in Cuboid(Vector3D(i - 1, 0, 0.5), Vector3D(0, 0, 0), "
-                             "0.3, 0.3, 0.3)\n");
+  auto looped = CompileOrDie(
+      "from model import *\n"
+      "for i in range(3):\n"
+      "    Cube in Cuboid(Vector3D(i - 1, 0, 0.5), Vector3D(0, 0, 0), "
+      "0.3, 0.3, 0.3)\n");
   ASSERT_TRUE(constant && looped);
   lang::RunCache cache;
   const Scene first = RunUntilAccepted(*constant, 0, &cache);
@@ -196,10 +197,11 @@ TEST(KeptWorkTest, RegionCallsWithTheSameArgumentsGiveOneKeptRegion) {
 // scenes. The law is rejection's: P(|x| > 0.5) = 0.2025 / 0.7 = 0.289 (x uniform on the 3 m
 // floor, kept when the cube fits the workspace of width w ~ U(1, 2)).
 TEST(KeptWorkTest, AWorkspaceOfDrawnSizeIsFoldedAnewInEveryScene) {
-  auto drawn = CompileOrDie("from model import *\n"
-                            "workspace = Cuboid(Vector3D(0, 0, 1), Vector3D(0, 0, 0), "
-                            "Range(1, 2), 1, 2)\n"
-                            "Cube on floor\n");
+  auto drawn = CompileOrDie(
+      "from model import *\n"
+      "workspace = Cuboid(Vector3D(0, 0, 1), Vector3D(0, 0, 0), "
+      "Range(1, 2), 1, 2)\n"
+      "Cube on floor\n");
   ASSERT_NE(drawn, nullptr);
   lang::RunCache cache;
   const Scene a = RunUntilAccepted(*drawn, 0, &cache), b = RunUntilAccepted(*drawn, 1, &cache);
