@@ -2,6 +2,7 @@
 // vector and region methods. Distributions and region constructors are in call_random.cc.
 #include <bit>
 #include <cmath>
+#include <optional>
 
 #include "lang/interp_internal.h"
 
@@ -20,14 +21,7 @@ Value Interpreter::EvalCall(const CallExpr& call, SourceSpan span) {
     spans.push_back(arg.value->span);
   }
   if (const auto* builtin = std::get_if<BuiltinRef>(&callee.data)) {
-    const BuiltinInfo& info = GetBuiltinInfo(builtin->id);
-    const int n = static_cast<int>(args.size());
-    if (n < info.min_args || (info.max_args >= 0 && n > info.max_args) ||
-        (builtin->id == Builtin::kSphere && n == 1)) {
-      Fail(span, "wrong-argument-count",
-           std::string(info.name) + " was given " + std::to_string(n) + " arguments; call it as " +
-               info.signature);
-    }
+    CheckArgumentCount(builtin->id, static_cast<int>(args.size()), span);
     if (options_.cache && builtin->id >= Builtin::kCuboid && builtin->id <= Builtin::kEmpty) {
       return CallRegionKept(call, builtin->id, args, spans, span);
     }
@@ -45,6 +39,57 @@ Value Interpreter::EvalCall(const CallExpr& call, SourceSpan span) {
              callee.As<const ClassInfo*>()->name + " with PROP VALUE, at V, on X, ...'");
   }
   Fail(call.callee->span, "type-error", "a " + TypeName(callee) + " cannot be called");
+}
+
+void Interpreter::CheckArgumentCount(Builtin id, int n, SourceSpan span) {
+  const BuiltinInfo& info = GetBuiltinInfo(id);
+  if (n < info.min_args || (info.max_args >= 0 && n > info.max_args) ||
+      (id == Builtin::kSphere && n == 1)) {
+    Fail(span, "wrong-argument-count",
+         std::string(info.name) + " was given " + std::to_string(n) + " arguments; call it as " +
+             info.signature);
+  }
+}
+
+std::optional<Interpreter::NumberRange> Interpreter::EvalRangeCall(const Expr& expr) {
+  const auto* call = std::get_if<CallExpr>(&expr.node);
+  if (!call) return std::nullopt;
+  const auto* name = std::get_if<NameRef>(&call->callee->node);
+  if (!name) return std::nullopt;
+  const Value callee = Lookup(name->name, call->callee->span);
+  const auto* builtin = std::get_if<BuiltinRef>(&callee.data);
+  if (!builtin || builtin->id != Builtin::kRangeFn) return std::nullopt;
+  EnterNested(expr.span);  // as Eval of the call would
+  std::vector<Value> args;
+  std::vector<SourceSpan> spans;
+  args.reserve(call->args.size());
+  spans.reserve(call->args.size());
+  for (const CallArg& arg : call->args) {
+    args.push_back(Eval(*arg.value));
+    spans.push_back(arg.value->span);
+  }
+  CheckArgumentCount(Builtin::kRangeFn, static_cast<int>(args.size()), expr.span);
+  const NumberRange range = CalcRange(args, spans, expr.span);
+  --eval_depth_;
+  return range;
+}
+
+Interpreter::NumberRange Interpreter::CalcRange(const std::vector<Value>& args,
+                                                const std::vector<SourceSpan>& spans,
+                                                SourceSpan span) {
+  auto number = [&](size_t i, const char* what) { return ToNumber(args[i], spans[i], what); };
+  double start = 0, stop = number(0, "range's stop"), step = 1;
+  if (args.size() >= 2) start = stop, stop = number(1, "range's stop");
+  if (args.size() == 3) step = number(2, "range's step");
+  if (step == 0) Fail(span, "bad-value", "range's step must not be zero");
+  const double count = std::max(0.0, std::ceil((stop - start) / step));
+  if (count > static_cast<double>(options_.limits.max_loop_iterations)) {
+    Fail(span, "limit-exceeded",
+         "range of " + Repr(count) +
+             " numbers is longer than the "
+             "loop limit of one scene");
+  }
+  return {start, step, static_cast<int64_t>(count)};
 }
 
 namespace {
@@ -144,20 +189,10 @@ Value Interpreter::CallBuiltin(Builtin id, const std::vector<Value>& args,
   auto number = [&](size_t i, const char* what) { return ToNumber(args[i], spans[i], what); };
   switch (id) {
     case Builtin::kRangeFn: {
-      double start = 0, stop = number(0, "range's stop"), step = 1;
-      if (args.size() >= 2) start = stop, stop = number(1, "range's stop");
-      if (args.size() == 3) step = number(2, "range's step");
-      if (step == 0) Fail(span, "bad-value", "range's step must not be zero");
-      const double count = std::max(0.0, std::ceil((stop - start) / step));
-      if (count > static_cast<double>(options_.limits.max_loop_iterations)) {
-        Fail(span, "limit-exceeded", "range of " + Repr(count) + " numbers is longer than the "
-                                     "loop limit of one scene");
-      }
+      const NumberRange range = CalcRange(args, spans, span);
       auto list = std::make_shared<ListData>();  // numbers only: depth 1
-      list->elements.reserve(static_cast<size_t>(count));
-      for (int64_t i = 0; i < static_cast<int64_t>(count); ++i) {
-        list->elements.emplace_back(start + i * step);
-      }
+      list->elements.reserve(static_cast<size_t>(range.count));
+      for (int64_t i = 0; i < range.count; ++i) list->elements.emplace_back(range.At(i));
       return Value(std::move(list));
     }
     case Builtin::kLen: return static_cast<double>(Iterate(args[0], spans[0]).size());

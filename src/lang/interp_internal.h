@@ -206,6 +206,18 @@ class Interpreter {
 
   // --- calls (call.cc) ---
   Value EvalCall(const CallExpr& call, SourceSpan span);
+  void CheckArgumentCount(Builtin id, int n, SourceSpan span);  // of a built-in's call
+  // The numbers range(...) gives: start + i·step for i in [0, count).
+  struct NumberRange {
+    double start, step;
+    int64_t count;
+    double At(int64_t i) const { return start + static_cast<double>(i) * step; }
+  };
+  NumberRange CalcRange(const std::vector<Value>& args, const std::vector<SourceSpan>& spans,
+                        SourceSpan span);
+  // `expr` is a call of the built-in range by its name: its numbers, the arguments evaluated
+  // as EvalCall would. nullopt, with nothing evaluated but the name, for any other expression.
+  std::optional<NumberRange> EvalRangeCall(const Expr& expr);
   Value CallBuiltin(Builtin id, const std::vector<Value>& args,
                     const std::vector<SourceSpan>& spans, SourceSpan span);
   Value CallDistribution(Builtin id, const std::vector<Value>& args,

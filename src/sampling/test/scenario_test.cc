@@ -186,5 +186,48 @@ TEST(ScenarioTest, CachedFixedObjectsGiveTheScenesOfAFreshSampler) {
   EXPECT_GT(rejections, 0);  // the cube does land in the table, and is rejected
 }
 
+// `for x in range(...)` runs over the numbers without making the list: the same numbers in the
+// same order, break and continue, an empty range, a user's own `range`, and the located errors
+// of an unpacking target and of a range past the loop limit.
+TEST(ScenarioTest, ForOverRangeGivesItsNumbersInOrder) {
+  auto numbers = [](const std::string& text) {
+    auto program = CompileOrDie("from model import *\nxs = []\n" + text + "param got = xs\n");
+    EXPECT_NE(program, nullptr);
+    std::vector<double> got;
+    if (!program) return got;
+    const Scene scene = SampleScene(*program, 1, 0).scene;
+    for (const lang::Value& x :
+         scene.params.at(0).second.As<std::shared_ptr<lang::ListData>>()->elements) {
+      got.push_back(x.As<double>());
+    }
+    return got;
+  };
+  EXPECT_EQ(numbers("for i in range(2, 11, 3):\n    xs = xs + [i]\n"),
+            (std::vector<double>{2, 5, 8}));
+  EXPECT_EQ(numbers("for j in range(5, 0, -2):\n    if j == 3:\n        continue\n"
+                    "    xs = xs + [j]\n"),
+            (std::vector<double>{5, 1}));
+  EXPECT_EQ(numbers("for k in range(100):\n    if k == 2:\n        break\n    xs = xs + [k]\n"),
+            (std::vector<double>{0, 1}));
+  EXPECT_EQ(numbers("for n in range(0):\n    xs = xs + [n]\n"), std::vector<double>{});
+  EXPECT_EQ(numbers("def range(n):\n    return [7]\nfor m in range(3):\n    xs = xs + [m]\n"),
+            (std::vector<double>{7}));
+
+  for (const auto& [text, message] :
+       {std::pair{"for a, b in range(2):\n    pass\n", "cannot iterate over a number"},
+        {"for a in range(10000000):\n    pass\n",
+         "range of 10000000 numbers is longer than the loop limit of one scene"}}) {
+    auto program = CompileOrDie(std::string("from model import *\n") + text);
+    ASSERT_NE(program, nullptr);
+    try {
+      SampleScene(*program, 1, 0);
+      ADD_FAILURE() << text << " sampled";
+    } catch (const lang::ScenarioError& e) {
+      EXPECT_NE(std::string(e.what()).find(message), std::string::npos) << e.what();
+      EXPECT_EQ(e.diagnostic().span.begin, std::string_view(text).find("range") + 20) << text;
+    }
+  }
+}
+
 }  // namespace
 }  // namespace prs::sampling
