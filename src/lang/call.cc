@@ -85,9 +85,7 @@ Interpreter::NumberRange Interpreter::CalcRange(const std::vector<Value>& args,
   const double count = std::max(0.0, std::ceil((stop - start) / step));
   if (count > static_cast<double>(options_.limits.max_loop_iterations)) {
     Fail(span, "limit-exceeded",
-         "range of " + Repr(count) +
-             " numbers is longer than the "
-             "loop limit of one scene");
+         "range of " + Repr(count) + " numbers is longer than the loop limit of one scene");
   }
   return {start, step, static_cast<int64_t>(count)};
 }
