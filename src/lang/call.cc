@@ -129,6 +129,9 @@ Value Interpreter::CallRegionKept(const CallExpr& call, Builtin id, const std::v
   }
   Value region = CallBuiltin(id, args, spans, span);  // may throw: nothing is kept then
   if (region.Is<RegionPtr>()) {
+    // Later scenes share it, and scenes carry it to other threads (Scene::workspace): its
+    // lazily computed form is filled now, so that reading it there races with nothing.
+    region.As<RegionPtr>()->Finalize();
     cache.kept_regions.insert(region.As<RegionPtr>().get());
     cache.region_calls.emplace(&call,
                                RunCache::RegionCall{std::move(bits), region.As<RegionPtr>()});

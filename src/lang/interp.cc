@@ -91,7 +91,9 @@ void Interpreter::RunModule(int module_index) {
   // Scenes carry these regions (Scene::workspace) to other threads: fill their lazily
   // computed caches now, so that reading them there races with nothing.
   for (const auto& [name, value] : globals) {
-    if (value.Is<RegionPtr>()) value.As<RegionPtr>()->Finalize();
+    if (!value.Is<RegionPtr>()) continue;
+    value.As<RegionPtr>()->Finalize();
+    options_.cache->kept_regions.insert(value.As<RegionPtr>().get());
   }
   const Env& kept = options_.cache->module_globals[module_index] = std::move(globals);
   module_envs_[module_index] = ModuleEnv{&kept, {}};

@@ -39,11 +39,6 @@ struct ModuleEnv {
     return nullptr;
   }
   bool empty() const { return own.empty() && (!shared || shared->empty()); }
-  /// Whether `name` is bound by the shared layer and not by the module itself: its value is
-  /// then the same in every scene and lives as long as the cache.
-  bool IsFromSharedLayer(const std::string& name) const {
-    return shared && shared->count(name) && !own.count(name);
-  }
   /// Every binding, the shared layer's under the module's own.
   Env Flatten() const {
     Env all = shared ? *shared : Env{};
@@ -306,9 +301,9 @@ class Interpreter {
   std::string DescribeBox(int index) const;  // "c (0.05 x 0.05 x 0.05 m at (x, y, z))"
   const geometry::ConvexRegion* Workspace() const;
   const RegionPtr* FindWorkspace() const;  // null when `workspace` is not a region
-  // The current module's workspace lives as long as the cache: bound by a shared module, or
-  // a region of RunCache::region_calls.
-  bool IsWorkspaceKept() const;
+  // `workspace` lives as long as the cache (RunCache::kept_regions): bound by a shared module,
+  // or made by a region call of RunCache::region_calls.
+  bool IsWorkspaceKept(const geometry::ConvexRegion& workspace) const;
 
   // --- placement (placement.cc) ---
   Eigen::Vector3d PlacePosition(const ObjectPlan& plan, int index, SourceSpan span);

@@ -270,13 +270,9 @@ const RegionPtr* Interpreter::FindWorkspace() const {
 
 // A workspace bound by a shared module (ModuleEnv::shared), or made by a region call with the
 // same arguments in every scene (RunCache::region_calls), is the same region in every scene and
-// lives as long as the cache: what is worked out from it may be kept there.
-bool Interpreter::IsWorkspaceKept() const {
-  static const std::string kWorkspace = "workspace";
-  if (!options_.cache) return false;
-  if (module_envs_[current_module_].IsFromSharedLayer(kWorkspace)) return true;
-  const RegionPtr* workspace = FindWorkspace();
-  return workspace && options_.cache->kept_regions.count(workspace->get()) > 0;
+// lives as long as the cache (RunCache::kept_regions): what is worked out from it may be kept.
+bool Interpreter::IsWorkspaceKept(const geometry::ConvexRegion& workspace) const {
+  return options_.cache && options_.cache->kept_regions.count(&workspace) > 0;
 }
 
 // Every object's whole box inside the workspace (spec §6), checked once the program has run.
@@ -289,7 +285,7 @@ void Interpreter::CheckWorkspace() {
   const RejectionKind kind = options_.mode == SamplingMode::kNaive ? RejectionKind::kContainment
                                                                    : RejectionKind::kWorkspace;
   // A kept fixed object found inside a kept workspace once is inside it in every scene.
-  const bool workspace_kept = IsWorkspaceKept();
+  const bool workspace_kept = IsWorkspaceKept(*workspace);
   for (int i = 0; i < static_cast<int>(scene_.objects.size()); ++i) {
     const SceneObject& o = scene_.objects[i];
     const bool keep = workspace_kept && o.fixed_id != 0;

@@ -227,7 +227,8 @@ PositionConstraint Interpreter::EvalPositionConstraint(const Specifier& s, int i
 const ConvexRegion& Interpreter::ErodeWorkspace(const ConvexRegion& workspace, int index,
                                                 ConvexRegion& storage) {
   const geometry::OrientedBox box = BoxOf(index);
-  if (!IsWorkspaceKept()) return storage = geometry::ErodeByBox(workspace, box.R_WB, box.half_extents);
+  if (!IsWorkspaceKept(workspace))
+    return storage = geometry::ErodeByBox(workspace, box.R_WB, box.half_extents);
   RunCache::ErodedKey key{&workspace, {}};  // bit patterns: -0 and 0 stay apart
   std::memcpy(key.second.data(), box.R_WB.data(), 9 * sizeof(double));
   std::memcpy(key.second.data() + 9, box.half_extents.data(), 3 * sizeof(double));

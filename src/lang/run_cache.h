@@ -80,6 +80,8 @@ class RunCache {
     bool varying = false;
   };
   std::unordered_map<const CallExpr*, RegionCall> region_calls;
+  /// Regions that live as long as this cache, finalized (geometry::ConvexRegion::Finalize):
+  /// those of region_calls and the regions among module_globals.
   std::set<const geometry::ConvexRegion*> kept_regions;
   /// Collision shapes of meshes (by mesh and scale) and of boxes that meet a mesh (by size).
   std::map<std::tuple<const shapes::MeshShape*, double, double, double>,
