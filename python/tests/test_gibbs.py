@@ -4,14 +4,10 @@ campaigns of any shard size, with the chain's schedule on the scenario; bad valu
 import pytest
 
 import probrobscene as prs
-import probrobscene.campaign as campaign
-from conftest import EXAMPLES, run_prs
+from conftest import (EXAMPLES, bin_program, expect_campaign_is_prs_sample,
+                      expect_prs_sample_scenes)
 
-BIN = """from model import *
-bin = Table on V3D(0, 0, 0), with width 0.5, with length 0.4
-for i in range(10):
-    Cube completely on bin, with yaw Range(0, 2 * math.pi)
-"""
+BIN = bin_program(10)
 
 
 def test_gibbs_scenes_are_prs_samples_for_any_threads(prs_binary, tmp_path):
@@ -20,29 +16,16 @@ def test_gibbs_scenes_are_prs_samples_for_any_threads(prs_binary, tmp_path):
     scenario = prs.load(path, search_path=[EXAMPLES], sampler="gibbs")
     assert scenario.sampler == "gibbs"
     assert scenario.gibbs is None  # no scene drawn yet
-    one = [s.to_json() for s in scenario.scenes(seed=3, count=40, threads=1)]
-    two = [s.to_json() for s in scenario.scenes(seed=3, count=40, threads=2)]
-    assert one == two
+    expect_prs_sample_scenes(prs_binary, scenario, path, seed=3, count=40)
     plan = scenario.gibbs
     assert plan["blocks"] == 10 and plan["thin_sweeps"] >= 1
     assert plan["autocorrelation_sweeps"] >= 1
-    result = run_prs(prs_binary, "sample", str(path), "-I", str(EXAMPLES), "--sampler", "gibbs",
-                     "-s", "3", "-n", "40")
-    assert result.returncode == 0, result.stderr
-    assert result.stdout.splitlines() == one
 
 
 def test_a_gibbs_campaign_is_prs_sample_for_any_shard_size(prs_binary, tmp_path):
     path = tmp_path / "bin.prs"
     path.write_text(BIN)
-    camp = tmp_path / "camp"
-    campaign.init(camp, path, 45, seed=4, shard_size=7, search_path=[EXAMPLES], sampler="gibbs")
-    campaign.run(camp)
-    campaign.merge(camp, tmp_path / "m.jsonl")
-    result = run_prs(prs_binary, "sample", str(path), "-I", str(EXAMPLES), "--sampler", "gibbs",
-                     "-s", "4", "-n", "45")
-    assert result.returncode == 0, result.stderr
-    assert (tmp_path / "m.jsonl").read_text() == result.stdout
+    expect_campaign_is_prs_sample(prs_binary, tmp_path, path, "gibbs", 45)
 
 
 def test_bad_samplers_are_refused():
