@@ -1,11 +1,12 @@
-// EGL set-up for offscreen rendering: the Mesa software device (EGL_MESA_device_software)
-// when the device platform lists one, else Mesa's surfaceless platform; a desktop-GL
-// (compatibility profile, as MuJoCo 2.x draws with the fixed pipeline) context.
+// EGL set-up for offscreen rendering: a desktop-GL context (compatibility profile, as MuJoCo
+// 2.x draws with the fixed pipeline) on one of the two displays Mesa offers a process, the
+// software device (EGL_MESA_device_software) and the surfaceless platform, taken in turn.
 #include "render/egl_context.h"
 
 #include <EGL/egl.h>
 #include <EGL/eglext.h>
 
+#include <atomic>
 #include <cstring>
 #include <stdexcept>
 #include <string>
@@ -49,13 +50,20 @@ EGLDisplay OpenSoftwareDeviceDisplay(PFNEGLGETPLATFORMDISPLAYEXTPROC get_display
   return EGL_NO_DISPLAY;
 }
 
-EGLDisplay OpenDisplay() {
+EGLDisplay OpenSurfacelessDisplay(PFNEGLGETPLATFORMDISPLAYEXTPROC get_display) {
+  return get_display(EGL_PLATFORM_SURFACELESS_MESA, EGL_DEFAULT_DISPLAY, nullptr);
+}
+
+// Display `k mod 2` of the two above, or the other one when that one is missing.
+EGLDisplay OpenDisplay(int k) {
   auto get_display = reinterpret_cast<PFNEGLGETPLATFORMDISPLAYEXTPROC>(
       eglGetProcAddress("eglGetPlatformDisplayEXT"));
   if (!get_display) FailEgl("eglGetProcAddress(eglGetPlatformDisplayEXT)");
-  EGLDisplay display = OpenSoftwareDeviceDisplay(get_display);
+  EGLDisplay display =
+      k % 2 == 0 ? OpenSoftwareDeviceDisplay(get_display) : OpenSurfacelessDisplay(get_display);
   if (display == EGL_NO_DISPLAY)
-    display = get_display(EGL_PLATFORM_SURFACELESS_MESA, EGL_DEFAULT_DISPLAY, nullptr);
+    display =
+        k % 2 == 0 ? OpenSurfacelessDisplay(get_display) : OpenSoftwareDeviceDisplay(get_display);
   if (display == EGL_NO_DISPLAY) FailEgl("eglGetPlatformDisplayEXT");
   return display;
 }
@@ -79,7 +87,8 @@ EGLConfig ChooseConfig(EGLDisplay display) {
 }  // namespace
 
 EglContext::EglContext() {
-  EGLDisplay display = OpenDisplay();
+  static std::atomic<int> contexts_made{0};
+  EGLDisplay display = OpenDisplay(contexts_made.fetch_add(1));
   if (!eglInitialize(display, nullptr, nullptr)) FailEgl("eglInitialize");
   display_ = display;
   if (!eglBindAPI(EGL_OPENGL_API)) FailEgl("eglBindAPI(EGL_OPENGL_API)");

@@ -6,6 +6,12 @@ namespace prs::render::internal {
 
 /// Owns an EGL display and a desktop-OpenGL context, current on the creating thread. The
 /// context has no window surface: MuJoCo draws into its own offscreen framebuffer.
+///
+/// Contexts alternate between two displays: llvmpipe has one rasterizer per display, which
+/// draws one picture at a time for all the display's contexts, and Mesa gives a process at most
+/// two (its software device and its surfaceless platform; both are llvmpipe and draw the same
+/// pixels). The k-th context of the process takes display k mod 2, so that two threads, each
+/// with a context of its own, draw at once; with one display only, every context takes it.
 class EglContext {
  public:
   /// Throws std::runtime_error naming the failed EGL step and its error code.
@@ -18,6 +24,9 @@ class EglContext {
   void MakeCurrent() const;
   /// Makes no context current on the calling thread, so that another thread can take this one.
   void Release() const;
+
+  /// The EGL display (an EGLDisplay), for telling two contexts' displays apart.
+  const void* display() const { return display_; }
 
   /// Current on the calling thread for one scope, released at its end (for objects that move
   /// between threads, such as a controller's renderer in a pool).

@@ -9,6 +9,7 @@
 #include <string>
 
 #include "render/context_key.h"
+#include "render/egl_context.h"
 #include "render/mujoco_model.h"
 
 namespace prs::render {
@@ -98,6 +99,21 @@ TEST(ModelRendererTest, ModelsThatDifferInTheContextGetTheirOwn) {
     const Picture back = Shoot(shared, *base);
     ExpectSame(back, ShootFresh(*base), c.what + ", then back");
   }
+}
+
+// Contexts made one after another take Mesa's two displays in turn (render/egl_context.h), so
+// that two threads draw at once; both displays are llvmpipe and draw the same pixels.
+TEST(ModelRendererTest, ContextsTakeTwoDisplaysInTurnAndDrawTheSamePictures) {
+  {
+    const internal::EglContext first, second, third;
+    EXPECT_NE(first.display(), second.display())
+        << "one display for all: two threads' pictures would wait for each other";
+    EXPECT_EQ(first.display(), third.display());
+  }
+  const ModelPtr model = LoadModelFromXml(Scene("0.2 -0.1 0.1"));
+  const Picture on_one = ShootFresh(*model);
+  const Picture on_other = ShootFresh(*model);
+  ExpectSame(on_one, on_other, "the two displays");
 }
 
 }  // namespace
