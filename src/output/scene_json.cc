@@ -12,6 +12,8 @@
 #include <charconv>
 #include <cmath>
 #include <cstdint>
+#include <stdexcept>
+#include <string_view>
 #include <nlohmann/json.hpp>
 #include <unordered_map>
 
@@ -38,9 +40,9 @@ char* WriteShortest(double x, char* out) {
   }
   const auto decimal = fmt::detail::dragonbox::to_decimal(x);
   char digits[20];
-  int size = 0;
-  for (uint64_t n = decimal.significand; n != 0; n /= 10) digits[19 - size++] = char('0' + n % 10);
-  const char* first = digits + 20 - size;
+  const char* first = digits;
+  const int size = static_cast<int>(
+      std::to_chars(digits, digits + sizeof digits, decimal.significand).ptr - digits);
   const int output_exp = decimal.exponent + size - 1;
   if (output_exp < -4 || output_exp >= 16) {
     *out++ = first[0];
@@ -79,30 +81,31 @@ namespace {
 
 // Shortest round-trip digits; integral values keep a ".0" so readers see a float, and
 // non-finite values (never produced for positions) become null as JSON has no spelling for them.
-void AppendNumber(double x, Out& out) {
-  if (!std::isfinite(x)) {
-    out += "null";
-    return;
-  }
+char* WriteNumber(double x, char* out) {
+  if (!std::isfinite(x)) return std::copy_n("null", 4, out);
   // Whole numbers (most dimensions, quaternion parts, zeros) are common: print them as integers.
   if (x == std::trunc(x) && std::abs(x) < 1e15) {
-    if (std::signbit(x)) out += '-';
-    char digits[24];
-    const auto end =
-        std::to_chars(digits, digits + sizeof digits, static_cast<int64_t>(std::abs(x))).ptr;
-    out.append(digits, end);
-    out += ".0";
-    return;
+    if (std::signbit(x)) *out++ = '-';
+    out = std::to_chars(out, out + 24, static_cast<int64_t>(std::abs(x))).ptr;
+    return std::copy_n(".0", 2, out);
   }
-  char digits[32];
-  char* end = WriteShortest(x, digits);
-  out.append(digits, end);
+  char* const start = out;
+  out = WriteShortest(x, out);
   // A number with a fractional part always shows a '.' or an exponent; only a whole number
   // too large for the branch above may lack both.
   if (x == std::trunc(x) &&
-      std::string_view(digits, end - digits).find_first_of(".e") == std::string_view::npos) {
-    out += ".0";
+      std::string_view(start, out - start).find_first_of(".e") == std::string_view::npos) {
+    out = std::copy_n(".0", 2, out);
   }
+  return out;
+}
+
+// The most WriteNumber writes: a sign, 17 digits, a point, an exponent "e-308" and ".0".
+constexpr size_t kMaxNumberChars = 32;
+
+void AppendNumber(double x, Out& out) {
+  char text[kMaxNumberChars];
+  out.append(text, WriteNumber(x, text));
 }
 
 bool IsPlainAscii(std::string_view s) {
@@ -126,15 +129,18 @@ void AppendString(std::string_view s, Out& out) {
       nlohmann::json(std::string(s)).dump(-1, ' ', false, nlohmann::json::error_handler_t::replace);
 }
 
+// `[x,y,...]`, written to the stack and appended once (at most four numbers here).
 void AppendNumbers(std::initializer_list<double> numbers, Out& out) {
-  out += '[';
-  bool first = true;
+  char text[2 + 4 * (kMaxNumberChars + 1)];
+  if (numbers.size() > 4) throw std::logic_error("AppendNumbers: at most four numbers");
+  char* end = text;
+  *end++ = '[';
   for (const double x : numbers) {
-    if (!first) out += ',';
-    first = false;
-    AppendNumber(x, out);
+    if (end != text + 1) *end++ = ',';
+    end = WriteNumber(x, end);
   }
-  out += ']';
+  *end++ = ']';
+  out.append(text, end);
 }
 
 void AppendValue(const lang::Value& v, Out& out);
