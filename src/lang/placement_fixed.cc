@@ -199,7 +199,7 @@ Value Interpreter::CreateFromTemplate(const ObjectPlan& plan, const RunCache::Ob
                                       SourceSpan span) {
   const int index = AddObjectCopy(kept.object, span);
   const Vector3d p = PlaceObject(plan, index, span);
-  scene_.objects[index].properties.Mutable()[kept.position_slot].second = Value(p);
+  scene_.objects[index].properties.SetValue(kept.position_slot, Value(p));
   FinishObject(index, span);
   return ObjectRef{index};
 }

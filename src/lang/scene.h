@@ -4,7 +4,9 @@
 
 #include <Eigen/Core>
 #include <Eigen/Geometry>
+#include <cstddef>
 #include <initializer_list>
+#include <iterator>
 #include <memory>
 #include <optional>
 #include <string>
@@ -23,8 +25,9 @@ struct Expr;
 
 /// An object's properties in definition order. Copies share one list until one of them is
 /// changed (copy on write), so an object a sampler copies unchanged into every scene
-/// (SceneObject::fixed_id) costs no copy of its properties. Read it as a vector of
-/// (name, value) pairs.
+/// (SceneObject::fixed_id) costs no copy of its properties, and a copy of a template
+/// (SceneObject::template_id) holds only its one changed entry, its position (SetValue). Read
+/// it as a vector of (name, value) pairs.
 class PropertyList {
  public:
   using Entry = std::pair<std::string, Value>;
@@ -32,11 +35,37 @@ class PropertyList {
   PropertyList(std::initializer_list<Entry> entries)
       : entries_(std::make_shared<std::vector<Entry>>(entries)) {}
 
-  const Entry* begin() const { return entries_ ? entries_->data() : nullptr; }
-  const Entry* end() const { return entries_ ? entries_->data() + entries_->size() : nullptr; }
   size_t size() const { return entries_ ? entries_->size() : 0; }
   bool empty() const { return size() == 0; }
-  const Entry& operator[](size_t i) const { return (*entries_)[i]; }
+  const Entry& operator[](size_t i) const {
+    return replaced_ && i == replaced_slot_ ? *replaced_ : (*entries_)[i];
+  }
+
+  /// Entries in order, this list's replaced entry in its place.
+  class Iterator {
+   public:
+    using iterator_category = std::forward_iterator_tag;
+    using value_type = Entry;
+    using difference_type = std::ptrdiff_t;
+    using pointer = const Entry*;
+    using reference = const Entry&;
+    Iterator(const PropertyList* list, size_t i) : list_(list), i_(i) {}
+    const Entry& operator*() const { return (*list_)[i_]; }
+    const Entry* operator->() const { return &(*list_)[i_]; }
+    Iterator& operator++() {
+      ++i_;
+      return *this;
+    }
+    Iterator operator++(int) { return Iterator(list_, i_++); }
+    bool operator==(const Iterator& other) const { return i_ == other.i_; }
+    bool operator!=(const Iterator& other) const { return i_ != other.i_; }
+
+   private:
+    const PropertyList* list_;
+    size_t i_;
+  };
+  Iterator begin() const { return Iterator(this, 0); }
+  Iterator end() const { return Iterator(this, size()); }
 
   /// The entries for writing: this list's own, copied first if another list shares them.
   std::vector<Entry>& Mutable() {
@@ -45,11 +74,30 @@ class PropertyList {
     } else if (entries_.use_count() > 1) {
       entries_ = std::make_shared<std::vector<Entry>>(*entries_);
     }
+    if (replaced_) {
+      (*entries_)[replaced_slot_] = std::move(*replaced_);
+      replaced_.reset();
+    }
     return *entries_;
+  }
+
+  /// Sets entry i's value. While the entries are shared, the first entry so set is held by this
+  /// list alone and the rest stays shared; a second one copies the list (Mutable).
+  void SetValue(size_t i, Value value) {
+    if (replaced_ && i == replaced_slot_) {
+      replaced_->second = std::move(value);
+    } else if (!replaced_ && entries_.use_count() > 1) {
+      replaced_.emplace((*entries_)[i].first, std::move(value));
+      replaced_slot_ = i;
+    } else {
+      Mutable()[i].second = std::move(value);
+    }
   }
 
  private:
   std::shared_ptr<std::vector<Entry>> entries_;
+  std::optional<Entry> replaced_;  // entry `replaced_slot_`, when set: this list's own value
+  size_t replaced_slot_ = 0;
 };
 
 struct SceneObject {
