@@ -9,9 +9,11 @@
 #include <fmt/format.h>
 
 #include <algorithm>
+#include <array>
 #include <charconv>
 #include <cmath>
 #include <cstdint>
+#include <cstring>
 #include <stdexcept>
 #include <string_view>
 #include <nlohmann/json.hpp>
@@ -23,6 +25,47 @@ namespace prs::output {
 namespace {
 
 using Out = std::string;
+
+}  // namespace
+
+namespace {
+
+// "00" "01" ... "99": two digits at a time.
+constexpr auto kDigitPairs = [] {
+  std::array<char, 200> pairs{};
+  for (int i = 0; i < 100; ++i) {
+    pairs[2 * i] = char('0' + i / 10);
+    pairs[2 * i + 1] = char('0' + i % 10);
+  }
+  return pairs;
+}();
+
+// n < 10^8 as exactly eight digits: two independent halves of four, two digits a step.
+void WriteEightDigits(uint32_t n, char* out) {
+  const uint32_t high = n / 10000, low = n % 10000;
+  std::memcpy(out, &kDigitPairs[2 * (high / 100)], 2);
+  std::memcpy(out + 2, &kDigitPairs[2 * (high % 100)], 2);
+  std::memcpy(out + 4, &kDigitPairs[2 * (low / 100)], 2);
+  std::memcpy(out + 6, &kDigitPairs[2 * (low % 100)], 2);
+}
+
+// A significand has at most 17 digits; eight at a time, three groups fit it.
+constexpr int kSignificandChars = 24;
+
+// The decimal digits of n > 0 at the end of `digits`; returns the first. Eight digits at a
+// time, as the digit-at-a-time loop's chain of 64-bit divisions was most of the writer's time.
+const char* WriteSignificand(uint64_t n, char (&digits)[kSignificandChars]) {
+  char* first = digits + kSignificandChars;
+  while (n >= 100000000) {
+    first -= 8;
+    WriteEightDigits(static_cast<uint32_t>(n % 100000000), first);
+    n /= 100000000;
+  }
+  first -= 8;
+  WriteEightDigits(static_cast<uint32_t>(n), first);  // 1 <= n < 10^8: ends the zeros
+  while (*first == '0') ++first;
+  return first;
+}
 
 }  // namespace
 
@@ -39,10 +82,9 @@ char* WriteShortest(double x, char* out) {
     return out;
   }
   const auto decimal = fmt::detail::dragonbox::to_decimal(x);
-  char digits[20];
-  const char* first = digits;
-  const int size = static_cast<int>(
-      std::to_chars(digits, digits + sizeof digits, decimal.significand).ptr - digits);
+  char digits[kSignificandChars];
+  const char* first = WriteSignificand(decimal.significand, digits);
+  const int size = static_cast<int>(digits + kSignificandChars - first);
   const int output_exp = decimal.exponent + size - 1;
   if (output_exp < -4 || output_exp >= 16) {
     *out++ = first[0];
