@@ -14,9 +14,9 @@
 #include <cmath>
 #include <cstdint>
 #include <cstring>
+#include <nlohmann/json.hpp>
 #include <stdexcept>
 #include <string_view>
-#include <nlohmann/json.hpp>
 #include <unordered_map>
 
 #include "geometry/rotation.h"
