@@ -1,6 +1,7 @@
 // EGL set-up for offscreen rendering: a desktop-GL context (compatibility profile, as MuJoCo
 // 2.x draws with the fixed pipeline) on one of the two displays Mesa offers a process, the
-// software device (EGL_MESA_device_software) and the surfaceless platform, taken in turn.
+// software device (EGL_MESA_device_software) and the surfaceless platform, taken in turn
+// while both draw with llvmpipe.
 #include "render/egl_context.h"
 
 #include <EGL/egl.h>
@@ -50,22 +51,22 @@ EGLDisplay OpenSoftwareDeviceDisplay(PFNEGLGETPLATFORMDISPLAYEXTPROC get_display
   return EGL_NO_DISPLAY;
 }
 
-EGLDisplay OpenSurfacelessDisplay(PFNEGLGETPLATFORMDISPLAYEXTPROC get_display) {
-  return get_display(EGL_PLATFORM_SURFACELESS_MESA, EGL_DEFAULT_DISPLAY, nullptr);
-}
-
-// Display `k mod 2` of the two above, or the other one when that one is missing.
-EGLDisplay OpenDisplay(int k) {
+PFNEGLGETPLATFORMDISPLAYEXTPROC GetDisplayFunction() {
   auto get_display = reinterpret_cast<PFNEGLGETPLATFORMDISPLAYEXTPROC>(
       eglGetProcAddress("eglGetPlatformDisplayEXT"));
   if (!get_display) FailEgl("eglGetProcAddress(eglGetPlatformDisplayEXT)");
-  EGLDisplay display =
-      k % 2 == 0 ? OpenSoftwareDeviceDisplay(get_display) : OpenSurfacelessDisplay(get_display);
-  if (display == EGL_NO_DISPLAY)
-    display =
-        k % 2 == 0 ? OpenSurfacelessDisplay(get_display) : OpenSoftwareDeviceDisplay(get_display);
-  if (display == EGL_NO_DISPLAY) FailEgl("eglGetPlatformDisplayEXT");
-  return display;
+  return get_display;
+}
+
+// Whether the current context draws with llvmpipe (its GL_RENDERER), as the software device's
+// always does: Mesa's surfaceless platform takes a GPU's driver where one is installed, whose
+// pictures would differ.
+bool DrawsWithLlvmpipe() {
+  using GetString = const unsigned char* (*)(unsigned);
+  auto get_string = reinterpret_cast<GetString>(eglGetProcAddress("glGetString"));
+  constexpr unsigned kGlRenderer = 0x1F01;
+  const unsigned char* renderer = get_string ? get_string(kGlRenderer) : nullptr;
+  return renderer && std::strncmp(reinterpret_cast<const char*>(renderer), "llvmpipe", 8) == 0;
 }
 
 EGLConfig ChooseConfig(EGLDisplay display) {
@@ -88,7 +89,32 @@ EGLConfig ChooseConfig(EGLDisplay display) {
 
 EglContext::EglContext() {
   static std::atomic<int> contexts_made{0};
-  EGLDisplay display = OpenDisplay(contexts_made.fetch_add(1));
+  const bool take_second = contexts_made.fetch_add(1) % 2 == 1;
+  const PFNEGLGETPLATFORMDISPLAYEXTPROC get_display = GetDisplayFunction();
+  const EGLDisplay software = OpenSoftwareDeviceDisplay(get_display);
+  if (take_second || software == EGL_NO_DISPLAY) {
+    const EGLDisplay surfaceless =
+        get_display(EGL_PLATFORM_SURFACELESS_MESA, EGL_DEFAULT_DISPLAY, nullptr);
+    if (surfaceless != EGL_NO_DISPLAY) {
+      if (software == EGL_NO_DISPLAY) {
+        Open(surfaceless);
+        return;
+      }
+      // The second display only where it works and draws what the first does; otherwise every
+      // context on the software device.
+      try {
+        Open(surfaceless);
+        if (DrawsWithLlvmpipe()) return;
+      } catch (const std::runtime_error&) {
+      }
+      Close();
+    }
+  }
+  if (software == EGL_NO_DISPLAY) FailEgl("eglGetPlatformDisplayEXT");
+  Open(software);
+}
+
+void EglContext::Open(void* display) {
   if (!eglInitialize(display, nullptr, nullptr)) FailEgl("eglInitialize");
   display_ = display;
   if (!eglBindAPI(EGL_OPENGL_API)) FailEgl("eglBindAPI(EGL_OPENGL_API)");
@@ -103,15 +129,18 @@ EglContext::EglContext() {
   MakeCurrent();
 }
 
-EglContext::~EglContext() {
+void EglContext::Close() {
   if (display_ == nullptr) return;
   eglMakeCurrent(display_, EGL_NO_SURFACE, EGL_NO_SURFACE, EGL_NO_CONTEXT);
   if (surface_) eglDestroySurface(display_, surface_);
   if (context_) eglDestroyContext(display_, context_);
+  display_ = context_ = surface_ = nullptr;
   // No eglTerminate: the display is process-wide (a later EglContext gets the same one), and
   // terminating it unloads Mesa's driver, orphaning a few of its allocations (LeakSanitizer
   // then fails the ASan tests).
 }
+
+EglContext::~EglContext() { Close(); }
 
 void EglContext::MakeCurrent() const {
   if (!eglMakeCurrent(display_, surface_, surface_, context_)) FailEgl("eglMakeCurrent");

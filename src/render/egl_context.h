@@ -9,9 +9,11 @@ namespace prs::render::internal {
 ///
 /// Contexts alternate between two displays: llvmpipe has one rasterizer per display, which
 /// draws one picture at a time for all the display's contexts, and Mesa gives a process at most
-/// two (its software device and its surfaceless platform; both are llvmpipe and draw the same
-/// pixels). The k-th context of the process takes display k mod 2, so that two threads, each
-/// with a context of its own, draw at once; with one display only, every context takes it.
+/// two (its software device and its surfaceless platform). The k-th context of the process
+/// takes display k mod 2, so that two threads, each with a context of its own, draw at once.
+/// The surfaceless platform serves only while it draws with llvmpipe too (on a machine with a
+/// GPU's Mesa driver it takes that driver, whose pixels differ): otherwise, and where either
+/// display is missing, every context takes the one display.
 class EglContext {
  public:
   /// Throws std::runtime_error naming the failed EGL step and its error code.
@@ -42,6 +44,9 @@ class EglContext {
   };
 
  private:
+  void Open(void* display);  // makes the context on `display`, current on this thread
+  void Close();              // undoes Open
+
   void* display_ = nullptr;
   void* context_ = nullptr;
   void* surface_ = nullptr;  // a 1x1 pbuffer only when surfaceless contexts are refused
