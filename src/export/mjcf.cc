@@ -43,7 +43,8 @@ class MeshAssets {
     const auto key = std::make_pair(body.mesh.get(), body.mesh_scale);
     auto it = entries_.find(key);
     if (it == entries_.end()) {
-      it = entries_.emplace(key, Entry{"mesh" + std::to_string(entries_.size())}).first;
+      it = entries_.emplace(key, Entry{"mesh" + std::to_string(entries_.size()), std::nullopt})
+               .first;
       Append(FormatMjcfMesh(it->second.name, body.mesh->mesh.vertices_O,
                             &body.mesh->mesh.triangles, body.mesh_scale));
     }

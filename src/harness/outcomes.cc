@@ -89,7 +89,10 @@ std::string QuoteForShell(const std::string& word) {
 std::string FormatRegenerateCommand(const std::vector<std::string>& scenario_args, uint64_t seed,
                                     uint64_t index) {
   std::string command = "prs sample";
-  for (const std::string& arg : scenario_args) command += " " + QuoteForShell(arg);
+  for (const std::string& arg : scenario_args) {
+    command += ' ';
+    command += QuoteForShell(arg);
+  }
   return command + " -s " + std::to_string(seed) + " --start " + std::to_string(index) + " -n 1";
 }
 

@@ -21,7 +21,13 @@ bool IsNumberLike(const Value& v) {
          (*tuple)->elements[1].Is<double>();
 }
 
-std::string OperatorName(BinaryOp op) { return "'" + std::string(BinaryOpName(op)) + "'"; }
+// Built by appending: `"'" + std::string(...)` draws GCC 12's false -Wrestrict warning.
+std::string OperatorName(BinaryOp op) {
+  std::string name = "'";
+  name += BinaryOpName(op);
+  name += '\'';
+  return name;
+}
 
 }  // namespace
 
@@ -189,9 +195,10 @@ Value Interpreter::EvalSidePoint(const SidePointExpr& node, SourceSpan span) {
   const Value target = Eval(*node.object);
   const auto* ref = std::get_if<ObjectRef>(&target.data);
   if (!ref || !scene_.objects[ref->index].cls->has_box) {
-    Fail(node.object->span, "type-error",
-         "'" + std::string(SideName(node.side)) + " of' needs an object with a size, but this is a " +
-             TypeName(target));
+    std::string message = "'";
+    message += SideName(node.side);
+    message += " of' needs an object with a size, but this is a " + TypeName(target);
+    Fail(node.object->span, "type-error", std::move(message));
   }
   const SceneObject& o = scene_.objects[ref->index];
   const Vector3d h = o.dimensions / 2;

@@ -48,7 +48,10 @@ ConvexRegion TranslateRegion(const ConvexRegion& region, const Vector3d& t) {
 
 std::string DescribeSpecifier(const Specifier& s, const SourceManager& sources) {
   const std::string_view text = sources.text(s.span.file).substr(s.span.begin, s.span.end - s.span.begin);
-  return "'" + std::string(text) + "'";
+  std::string quoted = "'";  // appended: "'" + std::string(...) draws GCC 12's false -Wrestrict
+  quoted += text;
+  quoted += '\'';
+  return quoted;
 }
 
 Vector3d Interpreter::PlacePosition(const ObjectPlan& plan, int index, SourceSpan span) {

@@ -62,7 +62,7 @@ TEST_F(RoughEdgesTest, ViewReadsAScenesFile) {
 }
 
 TEST_F(RoughEdgesTest, EmptyOutputPathIsAUsageError) {
-  for (const std::string& command : {"sample", "export", "render"}) {
+  for (const char* command : {"sample", "export", "render"}) {
     const Result r = Run({command, Example("table_cube.prs"), "-o", ""});
     EXPECT_EQ(r.exit_code, 2) << command;
     EXPECT_NE(r.err.find("expects a path, got an empty one"), std::string::npos) << r.err;

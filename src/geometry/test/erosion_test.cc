@@ -171,8 +171,12 @@ TEST(ErosionTest, RoundErosionIsExactForPolytopesAndHoldsEveryTurn) {
       ball_inside = ball_inside && past < -1e-3;
       ball_outside = ball_outside || past > 1e-3;
     }
-    if (ball_inside) EXPECT_TRUE(ball_centres.Contains(c));
-    if (ball_outside) EXPECT_FALSE(ball_centres.Contains(c));
+    if (ball_inside) {
+      EXPECT_TRUE(ball_centres.Contains(c));
+    }
+    if (ball_outside) {
+      EXPECT_FALSE(ball_centres.Contains(c));
+    }
     // Disk on the tabletop: the centre moved into the plane; a box of any yaw whose largest
     // horizontal inscribed disk has radius r fits only where the disk does.
     const Eigen::Vector3d p(c.x() + 0.1, c.y() - 0.2, 0.8);
@@ -207,8 +211,12 @@ TEST(ErosionTest, ErodeByPointsMatchesCornersAndBruteForce) {
     const ConvexRegion by_cloud = ErodeByPoints(region, R, cloud);
     for (int i = 0; i < 3000; ++i) {
       const Eigen::Vector3d c = RandomVector(rng, -1, 1);
-      if (by_box.Contains(c, -1e-7)) EXPECT_TRUE(by_corners.Contains(c));
-      if (!by_box.Contains(c, 1e-7)) EXPECT_FALSE(by_corners.Contains(c));
+      if (by_box.Contains(c, -1e-7)) {
+        EXPECT_TRUE(by_corners.Contains(c));
+      }
+      if (!by_box.Contains(c, 1e-7)) {
+        EXPECT_FALSE(by_corners.Contains(c));
+      }
       bool all_in = true, one_out = false;
       for (const Eigen::Vector3d& p : cloud) {
         all_in = all_in && region.Contains(c + R * p, -1e-7);

@@ -163,7 +163,9 @@ TEST(UnionIntersectTest, APlanarRegionsSlicesAgreeWithTheGeneralIntersection) {
       if (!slice.IsEmpty() && slice.dimension() == 2) general_area += slice.CalcMeasure();
     }
     // (On the shared facets both boxes' general slices are whole faces; the union counts one.)
-    if (trial > 0) ASSERT_NEAR(cut.CalcMeasure(), general_area, 1e-9) << "trial " << trial;
+    if (trial > 0) {
+      ASSERT_NEAR(cut.CalcMeasure(), general_area, 1e-9) << "trial " << trial;
+    }
     // The boxes tile [0, 0.9]² × [0, 0.8]: the slices' area is the table's within that.
     const ConvexRegion inside = Intersect(table, Box(Vector3d::Zero(), Vector3d(0.9, 0.9, 0.8)));
     ASSERT_NEAR(cut.CalcMeasure(), inside.IsEmpty() || inside.dimension() < 2 ? 0.0 : inside.CalcMeasure(), 1e-9)

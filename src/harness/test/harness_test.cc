@@ -229,7 +229,11 @@ TEST(TabulateOutcomesTest, SuccessFirstThenByCountAndSharesAddUp) {
                        .result = {outcome, ""},
                        .wall_s = 0,
                        .saved_scene = {},
-                       .regenerate = {}});
+                       .regenerate = {},
+                       .coordinates = {},
+                       .spec = {},
+                       .search = {},
+                       .features = {}});
   }
   const std::vector<OutcomeRow> rows = TabulateOutcomes(records);
   ASSERT_EQ(rows.size(), 4u);
@@ -254,7 +258,11 @@ TEST(FormatRecordJsonTest, KeysInOrderWithExtraAndRegenerate) {
                        .result = {"no-path", "far", {{"d_m", 0.9}}},
                        .wall_s = 0.5,
                        .saved_scene = {},
-                       .regenerate = "prs sample f -s 1"};
+                       .regenerate = "prs sample f -s 1",
+                       .coordinates = {},
+                       .spec = {},
+                       .search = {},
+                       .features = {}};
   EXPECT_EQ(FormatRecordJson(record),
             R"({"seed":1,"index":2,"outcome":"no-path","detail":"far","wall_s":0.5,)"
             R"("extra":{"d_m":0.9},"regenerate":"prs sample f -s 1"})");

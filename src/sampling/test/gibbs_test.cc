@@ -110,7 +110,9 @@ TEST(GibbsTest, SameScenesForAnyThreadCountAndRange) {
   for (size_t i = 0; i < one.size(); ++i) {
     EXPECT_EQ(one[i].coordinates, two[i].coordinates) << i;
     EXPECT_EQ(one[i].attempts, two[i].attempts) << i;
-    if (i >= 21) EXPECT_EQ(one[i].coordinates, tail[i - 21].coordinates) << i;
+    if (i >= 21) {
+      EXPECT_EQ(one[i].coordinates, tail[i - 21].coordinates) << i;
+    }
   }
   EXPECT_NE(one[0].coordinates, one[1].coordinates) << "consecutive scenes move";
 }

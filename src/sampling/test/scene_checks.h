@@ -131,8 +131,12 @@ inline std::string Fingerprint(const SampledScene& sampled) {
     }
   }
   for (const auto& [key, n] : sampled.rejections.by_culprit) {
-    text += " " + std::string(lang::RejectionKindName(key.first)) + "/" + key.second + "=" +
-            std::to_string(n);
+    text += ' ';
+    text += lang::RejectionKindName(key.first);
+    text += '/';
+    text += key.second;
+    text += '=';
+    text += std::to_string(n);
   }
   return text;
 }

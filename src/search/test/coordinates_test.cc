@@ -94,7 +94,9 @@ TEST(SceneCoordinatesTest, IidPointsGiveTheDistributionOfTheStream) {
   std::map<int, int> cube[2], tray[2], camera[2];
   for (int which = 0; which < 2; ++which) {
     for (const auto& s : which == 0 ? stream : at_points) {
-      if (which == 1) ASSERT_EQ(s.coordinates.size(), static_cast<size_t>(d));
+      if (which == 1) {
+        ASSERT_EQ(s.coordinates.size(), static_cast<size_t>(d));
+      }
       const auto& c = sampling::testing_checks::FindClass(s.scene, "Cube").p_WO;
       const auto& t = sampling::testing_checks::Find(s.scene, "tr_2").p_WO;
       const auto& k = sampling::testing_checks::FindClass(s.scene, "Camera").p_WO;

@@ -108,7 +108,9 @@ TEST(DesignTest, DesignsCoverTheCubePositionBetterThanIid) {
     EXPECT_LT(design_cube, 0.5 * iid_cube) << DesignName(kind);
     // In all 11 dimensions the star discrepancy favours the digital nets; a rank-1 lattice
     // (built for smooth periodic integrands) is no better there (docs/search.md).
-    if (kind != DesignKind::kLattice) EXPECT_LT(design_all, 0.9 * iid_all) << DesignName(kind);
+    if (kind != DesignKind::kLattice) {
+      EXPECT_LT(design_all, 0.9 * iid_all) << DesignName(kind);
+    }
   }
 }
 

@@ -157,7 +157,9 @@ TEST_F(ControllerTest, RobotBoxHeightsGiveComparableTables) {
     for (uint64_t index = 0; index < kScenes; ++index) {
       const lang::Scene scene = sampling::SampleScene(*program, 1, index).scene;
       for (const lang::SceneObject& o : scene.objects) {
-        if (o.cls && o.cls->name == "Robot") ASSERT_EQ(o.dimensions.z(), heights[h]);
+        if (o.cls && o.cls->name == "Robot") {
+          ASSERT_EQ(o.dimensions.z(), heights[h]);
+        }
       }
       ++tables[h][controller.Run(scene).outcome];
     }

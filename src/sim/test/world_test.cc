@@ -43,7 +43,9 @@ TEST(WorldTest, EveryObjectIsWhereTheSceneSaysAndArmsStandOnRobots) {
     EXPECT_GT(GetTcpPose(*world.data, arm.index).translation().y(), p_base.y() + 0.2);
   }
   for (const exporting::Body& b : world.scene.bodies) {
-    if (b.class_name == "Tray") EXPECT_GE(world.body(b.name + "_walls"), 0);
+    if (b.class_name == "Tray") {
+      EXPECT_GE(world.body(b.name + "_walls"), 0);
+    }
   }
 }
 
