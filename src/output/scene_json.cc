@@ -26,10 +26,6 @@ namespace {
 
 using Out = std::string;
 
-}  // namespace
-
-namespace {
-
 // "00" "01" ... "99": two digits at a time.
 constexpr auto kDigitPairs = [] {
   std::array<char, 200> pairs{};
@@ -142,7 +138,8 @@ char* WriteNumber(double x, char* out) {
   return out;
 }
 
-// The most WriteNumber writes: a sign, 17 digits, a point, an exponent "e-308" and ".0".
+// Room for the longest text WriteNumber writes (24 characters: a sign, 17 digits, a point and
+// an exponent such as "e-308").
 constexpr size_t kMaxNumberChars = 32;
 
 void AppendNumber(double x, Out& out) {
