@@ -10,19 +10,20 @@ namespace prs::lang::internal {
 
 using Eigen::Vector3d;
 
+namespace {
+
+bool IsRegionConstructor(Builtin id) { return id >= Builtin::kCuboid && id <= Builtin::kEmpty; }
+
+}  // namespace
+
 Value Interpreter::EvalCall(const CallExpr& call, SourceSpan span) {
   const Value callee = Eval(*call.callee);
   std::vector<Value> args;
   std::vector<SourceSpan> spans;
-  args.reserve(call.args.size());
-  spans.reserve(call.args.size());
-  for (const CallArg& arg : call.args) {
-    args.push_back(Eval(*arg.value));
-    spans.push_back(arg.value->span);
-  }
+  EvalArguments(call, args, spans);
   if (const auto* builtin = std::get_if<BuiltinRef>(&callee.data)) {
     CheckArgumentCount(builtin->id, static_cast<int>(args.size()), span);
-    if (options_.cache && builtin->id >= Builtin::kCuboid && builtin->id <= Builtin::kEmpty) {
+    if (options_.cache && IsRegionConstructor(builtin->id)) {
       return CallRegionKept(call, builtin->id, args, spans, span);
     }
     return CallBuiltin(builtin->id, args, spans, span);
@@ -39,6 +40,16 @@ Value Interpreter::EvalCall(const CallExpr& call, SourceSpan span) {
              callee.As<const ClassInfo*>()->name + " with PROP VALUE, at V, on X, ...'");
   }
   Fail(call.callee->span, "type-error", "a " + TypeName(callee) + " cannot be called");
+}
+
+void Interpreter::EvalArguments(const CallExpr& call, std::vector<Value>& args,
+                                std::vector<SourceSpan>& spans) {
+  args.reserve(call.args.size());
+  spans.reserve(call.args.size());
+  for (const CallArg& arg : call.args) {
+    args.push_back(Eval(*arg.value));
+    spans.push_back(arg.value->span);
+  }
 }
 
 void Interpreter::CheckArgumentCount(Builtin id, int n, SourceSpan span) {
@@ -62,12 +73,7 @@ std::optional<Interpreter::NumberRange> Interpreter::EvalRangeCall(const Expr& e
   EnterNested(expr.span);  // as Eval of the call would
   std::vector<Value> args;
   std::vector<SourceSpan> spans;
-  args.reserve(call->args.size());
-  spans.reserve(call->args.size());
-  for (const CallArg& arg : call->args) {
-    args.push_back(Eval(*arg.value));
-    spans.push_back(arg.value->span);
-  }
+  EvalArguments(*call, args, spans);
   CheckArgumentCount(Builtin::kRangeFn, static_cast<int>(args.size()), expr.span);
   const NumberRange range = CalcRange(args, spans, expr.span);
   --eval_depth_;
@@ -185,7 +191,7 @@ Value Interpreter::CallBuiltin(Builtin id, const std::vector<Value>& args,
                                const std::vector<SourceSpan>& spans, SourceSpan span) {
   if (id >= Builtin::kSin) return CallMath(id, args, spans, span);
   if (id == Builtin::kSphere && args.empty()) return PrimitiveRef{shapes::Primitive::kSphere};
-  if (id >= Builtin::kCuboid && id <= Builtin::kEmpty) return CallRegion(id, args, spans, span);
+  if (IsRegionConstructor(id)) return CallRegion(id, args, spans, span);
   if (id < Builtin::kCuboid) return CallDistribution(id, args, spans, span);
   auto number = [&](size_t i, const char* what) { return ToNumber(args[i], spans[i], what); };
   switch (id) {

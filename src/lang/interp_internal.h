@@ -201,6 +201,9 @@ class Interpreter {
 
   // --- calls (call.cc) ---
   Value EvalCall(const CallExpr& call, SourceSpan span);
+  // Each argument's value and span, in order.
+  void EvalArguments(const CallExpr& call, std::vector<Value>& args,
+                     std::vector<SourceSpan>& spans);
   void CheckArgumentCount(Builtin id, int n, SourceSpan span);  // of a built-in's call
   // The numbers range(...) gives: start + i·step for i in [0, count).
   struct NumberRange {
