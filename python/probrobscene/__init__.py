@@ -61,14 +61,15 @@ def load(path: PathLike, params: Optional[Mapping[str, ParamValue]] = None,
         naive: Sample positions from the workspace and check the specifiers afterwards (the
             paper's baseline, ``prs --naive``); the scenes differ from the default mode's.
         stable: Keep only scenes whose free bodies stay put under gravity (``prs --stable``):
-            ``True`` simulates 1 s, a number that many seconds; a scene in which a body moves
-            more than ``stable_move`` metres or turns more than ``stable_turn`` degrees is
-            rejected as "unstable" (docs/physics.md).
+            ``True`` simulates 1 s, a number that many seconds (at least 0.2, the least time
+            in which a body can be found at rest); a scene in which a body moves more than
+            ``stable_move`` metres or turns more than ``stable_turn`` degrees is rejected as
+            "unstable" (docs/physics.md).
         settle: Let the free bodies fall and come to rest, and give the scenes as they end
             (``prs --settle``): ``True`` allows 3 s of simulated time, a number that many
-            seconds; a scene not at rest by then, with an object outside the workspace, or
-            breaking a ``require settled``, is rejected as "unsettled" (docs/physics.md).
-            Not with ``stable``.
+            seconds (at least 0.5: rest is judged over the last 0.5 s); a scene not at rest
+            by then, with an object outside the workspace, or breaking a ``require
+            settled``, is rejected as "unsettled" (docs/physics.md). Not with ``stable``.
         sampler: ``"rejection"`` (exact, the default), ``"partial-rejection"`` (``prs --sampler
             partial-rejection``: exact, independent scenes of clutter, objects that only must not
             overlap, by partial rejection sampling) or ``"gibbs"`` (``prs --sampler gibbs``):

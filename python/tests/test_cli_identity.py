@@ -74,6 +74,8 @@ def test_stable_matches_prs_and_bad_values_are_refused(prs_binary, tmp_path):
     for bad in (0, -1.0, "1", float("nan")):
         with pytest.raises(ValueError):
             prs.load(path, search_path=[EXAMPLES], stable=bad)
+    with pytest.raises(ValueError, match="at least 0.2 s"):  # too short to find rest
+        prs.load(path, search_path=[EXAMPLES], stable=0.1)
     with pytest.raises(ValueError):
         prs.load(path, search_path=[EXAMPLES], stable=True, stable_move=0)
 
@@ -100,5 +102,7 @@ def test_settle_matches_prs_and_bad_values_are_refused(prs_binary, tmp_path):
     for bad in (0, -1.0, "1", float("nan")):
         with pytest.raises(ValueError):
             prs.load(path, search_path=[EXAMPLES], settle=bad)
+    with pytest.raises(ValueError, match="at least 0.5 s"):  # too short to find rest
+        prs.load(path, search_path=[EXAMPLES], settle=0.4)
     with pytest.raises(ValueError):
         prs.load(path, search_path=[EXAMPLES], settle=True, stable=True)

@@ -340,6 +340,8 @@ void RunShard(const std::string& dir, const CampaignSpec& spec,
     run.count = static_cast<int64_t>(spec.size(k));
     run.threads = threads;
     run.scenario_args = spec.scenario_words;
+    run.spec_hash = spec.spec_hash;
+    run.scene_options = harness::SceneOptionsOf(spec.scenario_words);
     run.cancel = cancel;
     run.on_warning = hooks.on_warning;
     run.on_record = [&](const harness::EpisodeRecord& r) {

@@ -24,6 +24,7 @@ search::SearchOptions MakeSearchOptions(const CampaignSpec& spec) {
   options.batch = static_cast<int64_t>(spec.batch);
   options.run.sample = MakeSampleOptions(spec);
   options.run.seed = spec.seed;
+  options.run.scene_options = harness::SceneOptionsOf(spec.scenario_words);
   return options;
 }
 

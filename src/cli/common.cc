@@ -12,6 +12,7 @@
 #include <fstream>
 #include <iostream>
 #include <limits>
+#include <mutex>
 #include <sstream>
 #include <thread>
 
@@ -55,6 +56,50 @@ std::vector<std::string> SplitPrsPath() {
 }
 
 bool UseColor() { return IsStderrTerminal() && std::getenv("NO_COLOR") == nullptr; }
+
+// Whether `command` or one of its subcommands (`campaign init`) has the option `name`.
+bool HasOption(const CLI::App& command, const std::string& name) {
+  if (command.get_option_no_throw(name)) return true;
+  for (const CLI::App* sub : command.get_subcommands([](const CLI::App*) { return true; })) {
+    if (HasOption(*sub, name)) return true;
+  }
+  return false;
+}
+
+// --stable=T, --settle=T: a T the physics check takes (`check` throws std::invalid_argument
+// with its message otherwise: below the least time in which rest can be decided). After
+// PositiveNumber, so the text is a number.
+CLI::Validator PhysicsCheckTakes(std::function<void(double)> check) {
+  return CLI::Validator(
+      [check](std::string& text) -> std::string {
+        try {
+          check(std::stod(text));
+        } catch (const std::exception& error) {
+          return error.what();
+        }
+        return "";
+      },
+      "");
+}
+
+// `require settled` is checked only on settled scenes: without --settle, the first scene that
+// ran one says so, once a run of prs, at the statement.
+sampling::SceneTest WarnOfUnsettledRequirements(sampling::SceneTest test) {
+  return [test = std::move(test)](lang::Scene& scene) -> std::optional<lang::Rejection> {
+    static std::once_flag warned;
+    if (!scene.settled_requirements.empty()) {
+      std::call_once(warned, [&] {
+        const lang::SettledRequirement& r = scene.settled_requirements.front();
+        const lang::LineColumn where = r.program->sources.CalcLineColumn(r.span.file, r.span.begin);
+        PrintWarning(fmt::format(
+            "{}:{}:{}: `require settled` is checked only on settled scenes, so without --settle "
+            "it is ignored (give --settle[=T] to let the scene come to rest first)",
+            r.program->sources.path(r.span.file), where.line, where.column));
+      });
+    }
+    return test ? test(scene) : std::nullopt;
+  };
+}
 
 }  // namespace
 
@@ -179,8 +224,9 @@ void AddSamplingOptions(CLI::App& command, SamplingArgs& args) {
   command
       .add_flag("--stable{1}", args.stable_s,
                 "keep only scenes whose free bodies stay put under gravity for T simulated "
-                "seconds (--stable=T; default 1; docs/physics.md)")
-      ->check(PositiveNumber("seconds"));
+                "seconds (--stable=T; default 1, at least 0.2; docs/physics.md)")
+      ->check(PositiveNumber("seconds"))
+      ->check(PhysicsCheckTakes([](double t) { sim::CheckStabilityOptions({t}); }));
   command.add_option("--stable-move", args.stable_move_m, "--stable: metres a body may move")
       ->type_name("M")
       ->check(PositiveNumber("metres"))
@@ -192,10 +238,32 @@ void AddSamplingOptions(CLI::App& command, SamplingArgs& args) {
   command
       .add_flag("--settle{3}", args.settle_s,
                 "let the free bodies fall and come to rest (at most T simulated seconds: "
-                "--settle=T; default 3), then check the workspace and `require settled` "
-                "(docs/physics.md)")
+                "--settle=T; default 3, at least 0.5), then check the workspace and `require "
+                "settled` (docs/physics.md)")
       ->check(PositiveNumber("seconds"))
+      ->check(PhysicsCheckTakes([](double t) { sim::CheckSettleOptions({t}); }))
       ->excludes("--stable");
+}
+
+std::optional<std::string> DiagnoseSpacedFlagValue(const CLI::App& command,
+                                                   const std::vector<std::string>& args) {
+  for (size_t i = 0; i + 1 < args.size() && args[i] != "--"; ++i) {
+    const std::string& flag = args[i];
+    if ((flag != "--stable" && flag != "--settle") || !HasOption(command, flag)) continue;
+    const std::string& value = args[i + 1];
+    size_t used = 0;
+    try {
+      std::stod(value, &used);
+    } catch (const std::exception&) {
+      continue;
+    }
+    if (used != value.size()) continue;
+    return fmt::format(
+        "{} takes its time after '=': write {}={} ({} alone means {} s, and a word after it is "
+        "not its value)",
+        flag, flag, value, flag, flag == "--stable" ? 1 : 3);
+  }
+  return std::nullopt;
 }
 
 sim::PhysicsCheck MakePhysicsCheck(const SamplingArgs& args) {
@@ -231,6 +299,7 @@ sampling::SampleOptions MakeSampleOptions(const SamplingArgs& args) {
   options.max_attempts = args.max_attempts;
   options.run.mode = args.naive ? lang::SamplingMode::kNaive : lang::SamplingMode::kRegion;
   options.accept = sim::MakePhysicsTest(MakePhysicsCheck(args));
+  if (args.settle_s.empty()) options.accept = WarnOfUnsettledRequirements(options.accept);
   if (args.sampler == "gibbs") options.gibbs = std::make_shared<sampling::GibbsRequest>();
   if (args.sampler == "partial-rejection") {
     options.partial_rejection = std::make_shared<sampling::PartialRejectionRequest>();
@@ -251,6 +320,54 @@ std::string DescribeGibbs(const sampling::SampleOptions& options, int64_t scenes
       FormatCount(scenes, "scene"), scenes == 1 ? "is" : "are", plan->CalcEffectiveScenes(scenes));
 }
 
+std::string FormatSamplingCounts(const sampling::BatchSummary& summary,
+                                 const sampling::SampleOptions& options) {
+  std::string reasons;
+  for (const auto& [kind, n] : summary.rejections.by_kind) {
+    reasons +=
+        fmt::format("{}{} {}", reasons.empty() ? "" : ", ", lang::RejectionKindName(kind), n);
+  }
+  if (!reasons.empty()) reasons = " (" + reasons + ")";
+  const std::string scenes = FormatCount(summary.scenes, "scene");
+  const int64_t rejected = summary.rejections.total;
+  if (options.gibbs) {
+    // A scene is a stretch of a chain: every run is one try of a move, accepted or not.
+    return fmt::format("{}, {} (Gibbs moves, each redrawing one object), {} rejected{}", scenes,
+                       FormatCount(summary.attempts, "program run"), rejected, reasons);
+  }
+  if (options.partial_rejection) {
+    // Probe runs of one object each make the hard-core draws; only the whole-scene runs that
+    // follow are rejected (by the requirements), and counted.
+    return fmt::format(
+        "{}, {} (one-object probes of hard-core draws, and whole scenes), {} rejected{}", scenes,
+        FormatCount(summary.attempts, "program run"), FormatCount(rejected, "whole scene"),
+        reasons);
+  }
+  return fmt::format("{}, {}, {}{}", scenes, FormatCount(summary.attempts, "attempt"),
+                     FormatCount(rejected, "rejection"), reasons);
+}
+
+bool CheckSamplerTakesPoints(const sampling::SampleOptions& options, std::string_view with,
+                             std::string_view instead) {
+  if (!options.gibbs && !options.partial_rejection) return true;
+  PrintError(fmt::format(
+      "--sampler {} cannot be used with {}: {} chooses the scene coordinates of each scene "
+      "itself, and the {} chooses its own; {}",
+      options.gibbs ? "gibbs" : "partial-rejection", with, with,
+      options.gibbs ? "Gibbs chain" : "partial rejection sampler", instead));
+  return false;
+}
+
+bool CheckSamplerTakesPoints(const SamplingArgs& args, std::string_view with,
+                             std::string_view instead) {
+  sampling::SampleOptions options;
+  if (args.sampler == "gibbs") options.gibbs = std::make_shared<sampling::GibbsRequest>();
+  if (args.sampler == "partial-rejection") {
+    options.partial_rejection = std::make_shared<sampling::PartialRejectionRequest>();
+  }
+  return CheckSamplerTakesPoints(options, with, instead);
+}
+
 sampling::BatchOptions MakeBatchOptions(const SamplingArgs& args, int64_t count,
                                         const std::atomic<bool>& cancel) {
   sampling::BatchOptions options;
@@ -264,7 +381,9 @@ sampling::BatchOptions MakeBatchOptions(const SamplingArgs& args, int64_t count,
 
 int ReportScenarioError(const lang::ScenarioError& error, const lang::SourceManager& sources) {
   std::cerr << lang::RenderDiagnostic(error.diagnostic(), sources, UseColor());
-  return error.diagnostic().id == "sampling-failed" ? kExitSamplingFailure : kExitScenarioError;
+  const std::string& id = error.diagnostic().id;
+  return id == "sampling-failed" || id == "partial-rejection-too-dense" ? kExitSamplingFailure
+                                                                        : kExitScenarioError;
 }
 
 std::string FormatCount(int64_t n, std::string_view noun) {

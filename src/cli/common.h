@@ -56,10 +56,36 @@ struct SamplingArgs {
 /// The physics check of --stable or --settle (sim::MakePhysicsTest makes it).
 sim::PhysicsCheck MakePhysicsCheck(const SamplingArgs& args);
 
+/// `--stable 0.5` (a space where `=` belongs) in the words after a command name: the usage
+/// error that suggests `--stable=0.5`, for --stable or --settle (options of `command` whose
+/// value is optional, so that CLI11 takes the number for FILE or an extra word) followed by a
+/// number; nullopt otherwise.
+std::optional<std::string> DiagnoseSpacedFlagValue(const CLI::App& command,
+                                                   const std::vector<std::string>& args);
+
 /// What --sampler gibbs says after a run of `scenes` scenes: that they are correlated, the
 /// autocorrelation time, thinning, burn-in and the effective number of scenes. Empty without
 /// --sampler gibbs, or before any scene was drawn.
 std::string DescribeGibbs(const sampling::SampleOptions& options, int64_t scenes);
+
+/// The counts of a run of scenes, named for what they are. Whole-scene rejection: "100 scenes,
+/// 137 attempts, 37 rejections (collision 30, requirement 7)", where attempts = scenes +
+/// rejections. --sampler gibbs and partial-rejection run the program many times a scene and
+/// have no attempts in that sense: "3000 scenes, 183069 program runs (Gibbs moves, each
+/// redrawing one object), 12 rejected (collision 12)", "... program runs (one-object probes of
+/// hard-core draws, and whole scenes), 2 whole scenes rejected (requirement 2)".
+std::string FormatSamplingCounts(const sampling::BatchSummary& summary,
+                                 const sampling::SampleOptions& options);
+
+/// For a command or option that runs scenes at points it chooses (`with`: "prs estimate",
+/// "--design sobol"): with --sampler gibbs or partial-rejection, which choose their own scene
+/// coordinates, prints the usage error `--sampler KIND cannot be used with WITH: ...; INSTEAD`
+/// and returns false; else returns true.
+bool CheckSamplerTakesPoints(const SamplingArgs& args, std::string_view with,
+                             std::string_view instead);
+/// The same for a command that holds only the sample options (gibbs or partial_rejection set).
+bool CheckSamplerTakesPoints(const sampling::SampleOptions& options, std::string_view with,
+                             std::string_view instead);
 
 /// Adds FILE, -I and -p to `command`.
 void AddScenarioOptions(CLI::App& command, ScenarioArgs& args);
@@ -95,13 +121,17 @@ int CountHardwareThreads();
 /// stderr. Returns null when there were errors (a missing FILE is one: "file-not-found").
 std::unique_ptr<lang::CompiledProgram> CompileScenario(const ScenarioArgs& args);
 
+/// The sample options of `args`; the scene test is the physics check (MakePhysicsCheck). Without
+/// --settle, the first scene that ran a `require settled` prints a warning, once a run of prs,
+/// that it is ignored (`prs: warning: FILE:LINE:COL: ...`).
 sampling::SampleOptions MakeSampleOptions(const SamplingArgs& args);
 /// Batch options for scenes 0..count-1 of the seed in `args`, stopped when `cancel` is set.
 sampling::BatchOptions MakeBatchOptions(const SamplingArgs& args, int64_t count,
                                         const std::atomic<bool>& cancel);
 
 /// Prints the diagnostic of a failed run and returns its exit code: kExitSamplingFailure for
-/// "sampling-failed", kExitScenarioError for anything else.
+/// "sampling-failed" and "partial-rejection-too-dense" (no valid scene found), kExitScenarioError
+/// for anything else.
 int ReportScenarioError(const lang::ScenarioError& error, const lang::SourceManager& sources);
 
 /// "1 scene", "2 scenes", "3 classes".

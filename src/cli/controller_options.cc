@@ -61,6 +61,19 @@ std::optional<harness::ControllerFactory> ChooseController(const ControllerArgs&
   return std::nullopt;
 }
 
+std::string DescribeRecordsSoFar(output::LineWriter& records) {
+  try {
+    records.Flush();
+  } catch (const std::exception& error) {
+    return std::string("the records so far could not be written: ") + error.what();
+  }
+  if (records.lines_written() == 0) {
+    return "no episode finished, so no record was written (nor " + records.partial_path() + ")";
+  }
+  return fmt::format("the {} so far {} in {}", FormatCount(records.lines_written(), "record"),
+                     records.lines_written() == 1 ? "is" : "are", records.partial_path());
+}
+
 std::vector<std::string> MakeScenarioWords(const ScenarioArgs& scenario,
                                            const SamplingArgs& sampling) {
   std::vector<std::string> words = {scenario.file};

@@ -44,6 +44,10 @@ std::vector<std::string> MakeScenarioWords(const ScenarioArgs& scenario,
 bool OpenEpisodeOutputs(const std::string& output, const std::string& save_failures_dir,
                         std::unique_ptr<output::LineWriter>* records);
 
+/// After a run stopped early: "the 12 records so far are in OUT.partial" once they are
+/// flushed there, or that no episode finished, so no record file was left.
+std::string DescribeRecordsSoFar(output::LineWriter& records);
+
 /// outcome / count / share, with a total row (the paper's Table III).
 std::string FormatOutcomeTable(const std::vector<harness::EpisodeRecord>& records);
 

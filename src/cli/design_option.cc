@@ -30,6 +30,12 @@ bool PrepareDesign(const DesignArgs& args, const lang::CompiledProgram& program,
   search::DesignKind kind = search::DesignKind::kRandom;
   search::ParseDesign(args.name, &kind);
   if (kind == search::DesignKind::kRandom) return true;
+  if (!CheckSamplerTakesPoints(sample, "--design " + args.name,
+                               "leave out --design (scenes then come from the sampler alone), "
+                               "or --sampler (the default, rejection, is exact for any program "
+                               "and runs each scene's first attempt at the design's point)")) {
+    return false;
+  }
   const int dimension = static_cast<int>(sampling::DescribeCoordinates(program, sample).size());
   if (dimension == 0) {
     PrintNote("--design " + args.name +

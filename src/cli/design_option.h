@@ -19,7 +19,8 @@ void AddDesignOption(CLI::App& command, DesignArgs& args);
 
 /// Builds the design for `program` and points `sample` at it (a lattice is built for the
 /// scenes 0..start+count-1). Nothing to do for "random", or for a program that draws nothing
-/// at random (then a note says so). Returns false after printing a usage error; throws
+/// at random (then a note says so). Returns false after printing a usage error (a lattice too
+/// large, or --sampler gibbs or partial-rejection, which choose their own points); throws
 /// lang::ScenarioError when the program fails while its coordinates are probed.
 bool PrepareDesign(const DesignArgs& args, const lang::CompiledProgram& program,
                    const SceneRangeArgs& range, sampling::SampleOptions& sample,

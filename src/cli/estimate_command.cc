@@ -4,6 +4,7 @@
 // makes the estimate again from a record file alone.
 #include <fmt/format.h>
 
+#include <algorithm>
 #include <iostream>
 #include <memory>
 #include <nlohmann/json.hpp>
@@ -22,6 +23,10 @@
 namespace prs::cli {
 namespace {
 
+// Below this many failing weighted episodes an interval rests on a variance estimated from
+// those few, and the command says so.
+constexpr int64_t kFewFailingEpisodes = 10;
+
 struct EstimateArgs {
   ScenarioArgs scenario;
   SamplingArgs sampling;
@@ -31,17 +36,23 @@ struct EstimateArgs {
   std::string from;  // --from RESULTS.jsonl
   bool json = false;
   bool quiet = false;
+  std::vector<std::pair<std::string, const CLI::Option*>> run_options;  // refused with --from
 };
 
 std::string FormatPercent(double p) { return fmt::format("{:#.3g} %", 100 * p); }
 
+// One row per failure kind; i.i.d. records need no "as tight" column (they are the i.i.d.
+// episodes).
 std::string FormatEstimateTable(const search::Estimate& e) {
-  TextTable table({"outcome", "p", "95% interval", "failed", "i.i.d. episodes for as tight"},
-                  "lrrrr");
+  std::vector<std::string> header = {"outcome", "p", "95% interval", "failed"};
+  if (!e.iid) header.push_back("i.i.d. episodes for as tight");
+  TextTable table(header, e.iid ? "lrrr" : "lrrrr");
   for (const search::OutcomeEstimate& o : e.outcomes) {
-    table.AddRow({o.outcome, FormatPercent(o.p),
-                  FormatPercent(o.ci_low) + " - " + FormatPercent(o.ci_high),
-                  std::to_string(o.episodes), fmt::format("{:.0f}", o.iid_episodes)});
+    std::vector<std::string> row = {o.outcome, FormatPercent(o.p),
+                                     FormatPercent(o.ci_low) + " - " + FormatPercent(o.ci_high),
+                                     std::to_string(o.episodes)};
+    if (!e.iid) row.push_back(fmt::format("{:.0f}", o.iid_episodes));
+    table.AddRow(row);
   }
   return table.Format(0);
 }
@@ -80,14 +91,42 @@ int PrintEstimate(const search::Estimate& e, const EstimateArgs& args) {
         e.ess, e.episodes));
   } else if (e.outcomes.empty() && !args.quiet) {
     PrintNote(fmt::format(
-        "no failure in {} weighted episodes: the probability of failing is below {} (a 95 % "
+        "no failure in {}: the probability of failing is below {} (a 95 % "
         "upper bound; a failure rarer than that may still exist)",
-        e.episodes, FormatPercent(e.upper_bound)));
+        FormatCount(e.episodes, e.iid ? "i.i.d. episode" : "weighted episode"),
+        FormatPercent(e.upper_bound)));
+  } else if (!args.quiet) {
+    const int64_t fewest = std::min_element(e.outcomes.begin(), e.outcomes.end(),
+                                            [](const auto& a, const auto& b) {
+                                              return a.episodes < b.episodes;
+                                            })->episodes;
+    if (!e.iid && fewest < kFewFailingEpisodes) {
+      PrintNote(fmt::format(
+          "a failure seen in fewer than {} weighted episodes has an approximate interval: its "
+          "variance is estimated from those few; raise --budget to firm it up",
+          kFewFailingEpisodes));
+    }
   }
   return kExitSuccess;
 }
 
+// --from reads records and runs nothing: the options of a run would be ignored, so they are
+// refused. Returns the first one given, or "".
+std::string FindRunOption(const EstimateArgs& args) {
+  for (const auto& [name, option] : args.run_options) {
+    if (option->count() > 0) return name;
+  }
+  return "";
+}
+
 int EstimateFromRecords(const EstimateArgs& args) {
+  if (const std::string option = FindRunOption(args); !option.empty()) {
+    PrintError(fmt::format(
+        "{}: --from makes the estimate from the records alone and runs nothing; leave out {} "
+        "(the records keep the seed, options and controller of the run that wrote them)",
+        option, option));
+    return kExitUsage;
+  }
   std::string spec;
   if (!args.scenario.file.empty()) {
     auto program = CompileScenario(args.scenario);
@@ -97,11 +136,14 @@ int EstimateFromRecords(const EstimateArgs& args) {
   const auto lines = ReadLines(args.from);
   if (!lines) return kExitScenarioError;
   try {
-    const search::Estimate e =
-        search::CalcEstimate(search::ReadWeightedRecords(*lines, args.from, spec));
+    const search::WeightedRecords records = search::ReadWeightedRecords(*lines, args.from, spec);
+    const search::Estimate e = search::CalcEstimate(records.records, records.outcomes_seen);
     if (!args.quiet) {
-      PrintNote(fmt::format("{} in {}; effective sample size {:.0f}",
-                            FormatCount(e.episodes, "weighted episode"), args.from, e.ess));
+      PrintNote(e.iid ? fmt::format("{} in {}, drawn independently from the program's law",
+                                    FormatCount(e.episodes, "i.i.d. episode"), args.from)
+                      : fmt::format("{} in {}; effective sample size {:.0f}",
+                                    FormatCount(e.episodes, "weighted episode"), args.from,
+                                    e.ess));
     }
     return PrintEstimate(e, args);
   } catch (const std::exception& error) {
@@ -112,6 +154,11 @@ int EstimateFromRecords(const EstimateArgs& args) {
 
 int RunEstimateCommand(const EstimateArgs& args) {
   if (!args.from.empty()) return EstimateFromRecords(args);
+  if (!CheckSamplerTakesPoints(args.sampling, "prs estimate",
+                               "leave out --sampler (the default, rejection, is exact for any "
+                               "program, which the estimate's weights need)")) {
+    return kExitUsage;
+  }
   if (args.scenario.file.empty() || args.budget == 0) {
     PrintError("give the .prs scenario, a controller and --budget N (or --from RESULTS.jsonl)");
     return kExitUsage;
@@ -130,6 +177,8 @@ int RunEstimateCommand(const EstimateArgs& args) {
   options.run.threads = args.sampling.threads;
   options.run.cancel = &interrupt.flag();
   options.run.spec_hash = search::CalcSpecHash(*program);
+  options.run.scene_options =
+      harness::SceneOptionsOf(MakeScenarioWords(args.scenario, args.sampling));
   ProgressBar progress(args.budget, !args.quiet && IsStderrTerminal());
   int64_t done = 0;
   options.on_record = [&](const harness::EpisodeRecord& record) {
@@ -168,10 +217,9 @@ int RunEstimateCommand(const EstimateArgs& args) {
     return ReportScenarioError(error, program->sources);
   } catch (const sampling::BatchCancelled&) {
     progress.Erase();
-    PrintNote(fmt::format(
-        "interrupted after {}; no estimate (run it again; the records so far "
-        "are in {})",
-        FormatCount(done, "episode"), records ? records->partial_path() : std::string("(no -o)")));
+    PrintNote(fmt::format("interrupted after {}; no estimate (run it again){}",
+                          FormatCount(done, "episode"),
+                          records ? "; " + DescribeRecordsSoFar(*records) : std::string()));
     return kExitInterruptedBase + interrupt.signal_number();
   } catch (const std::exception& error) {  // a controller that cannot start, records unwritable
     progress.Erase();
@@ -206,6 +254,12 @@ CommandRunner ConfigureEstimateCommand(CLI::App& command) {
   command.add_flag("--json", args->json, "print one JSON object instead of the table");
   AddSamplingOptions(command, args->sampling);
   command.add_flag("-q,--quiet", args->quiet, "no summary on stderr");
+  for (const char* name : {"--controller", "--exec", "--budget", "-s", "-o", "--threads",
+                           "--settle", "--stable", "--sampler", "--naive"}) {
+    if (const CLI::Option* option = command.get_option_no_throw(name)) {
+      args->run_options.emplace_back(name, option);
+    }
+  }
   return [args] { return RunEstimateCommand(*args); };
 }
 

@@ -51,12 +51,12 @@ std::string FormatProgressLine(int64_t done, int64_t total, double elapsed_s, in
 }
 
 std::string FormatHardSceneLine(int64_t done, int64_t total, int64_t attempts, int64_t rejections,
-                                double seconds, int width) {
+                                double seconds, int width, const char* runs_noun) {
   const double rate = seconds > 0 ? attempts / seconds : 0.0;
   const double rejected = attempts > 0 ? 100.0 * rejections / attempts : 0.0;
   const std::string line =
-      fmt::format("prs: scene {} of {}: {} attempts in {}, {:.0f}/s, {:.1f}% rejected", done + 1,
-                  total, attempts, FormatDuration(seconds), rate, rejected);
+      fmt::format("prs: scene {} of {}: {} {} in {}, {:.0f}/s, {:.1f}% rejected", done + 1,
+                  total, attempts, runs_noun, FormatDuration(seconds), rate, rejected);
   return line.substr(0, std::max(width - 1, 0));
 }
 
@@ -70,6 +70,7 @@ ProgressBar::ProgressBar(int64_t total, bool enabled)
 void ProgressBar::Attach(sampling::BatchOptions& options, sampling::BatchCallbacks& callbacks) {
   if (!enabled_) return;
   options.sample.live = &live_;
+  if (options.sample.gibbs || options.sample.partial_rejection) runs_noun_ = "program runs";
   callbacks.tick = [this] { Tick(); };
 }
 
@@ -95,7 +96,7 @@ void ProgressBar::Tick() {
   Draw(FormatHardSceneLine(done_, total_,
                            live_.attempts.load(std::memory_order_relaxed) - attempts_at_done_,
                            live_.rejections.load(std::memory_order_relaxed) - rejections_at_done_,
-                           waited_s, CalcTerminalWidth()),
+                           waited_s, CalcTerminalWidth(), runs_noun_),
        now);
 }
 

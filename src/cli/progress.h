@@ -25,7 +25,8 @@ class ProgressBar {
   void Erase();
   /// When enabled, connects the bar to a batch: attempts are counted as they happen, and
   /// while one scene takes over a second the line shows its attempts and rejections per
-  /// second instead of a bar that does not move. Both must outlive the batch.
+  /// second instead of a bar that does not move (its "program runs" with --sampler gibbs or
+  /// partial-rejection). Both must outlive the batch.
   void Attach(sampling::BatchOptions& options, sampling::BatchCallbacks& callbacks);
 
  private:
@@ -42,6 +43,7 @@ class ProgressBar {
   Clock::time_point last_done_;   // when scene done_ - 1 was handed over
   int64_t attempts_at_done_ = 0;  // live_ counts then
   int64_t rejections_at_done_ = 0;
+  const char* runs_noun_ = "attempts";  // what the live counts count
 };
 
 /// The bar's text, at most `width` columns, e.g.
@@ -49,8 +51,9 @@ class ProgressBar {
 std::string FormatProgressLine(int64_t done, int64_t total, double elapsed_s, int width);
 
 /// The line while scene `done` (0-based) is hard to find, at most `width` columns, e.g.
-/// `prs: scene 4 of 10: 1234567 attempts in 12s, 102880/s, 100.0% rejected`.
+/// `prs: scene 4 of 10: 1234567 attempts in 12s, 102880/s, 100.0% rejected` (`runs_noun`
+/// names what `attempts` counts: "program runs" for the samplers that are not rejection).
 std::string FormatHardSceneLine(int64_t done, int64_t total, int64_t attempts, int64_t rejections,
-                                double seconds, int width);
+                                double seconds, int width, const char* runs_noun = "attempts");
 
 }  // namespace prs::cli

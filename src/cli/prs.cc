@@ -87,6 +87,14 @@ int RunCommandLine(int argc, char** argv) {
     std::cerr << "run 'prs --help' for usage\n";
     return kExitUsage;
   }
+  for (const auto& [subcommand, run] : runners) {
+    if (argv[1] != subcommand->get_name()) continue;
+    if (const auto spaced = DiagnoseSpacedFlagValue(*subcommand, {argv + 2, argv + argc})) {
+      PrintError(*spaced);
+      std::cerr << "run 'prs " << subcommand->get_name() << " --help' for usage\n";
+      return kExitUsage;
+    }
+  }
   try {
     app.parse(argc, argv);
   } catch (const CLI::ParseError& error) {

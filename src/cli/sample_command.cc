@@ -44,18 +44,11 @@ bool ShouldShowProgress(const SampleArgs& args, const output::LineWriter& writer
 }
 
 // "100 scenes, 137 attempts, 37 rejections (collision 30, requirement 7); 0.02 s, 5000 scenes/s
-// on 2 threads"
-std::string FormatSampleSummary(const sampling::BatchSummary& summary, double seconds,
+// on 2 threads" (FormatSamplingCounts names the counts of the other samplers).
+std::string FormatSampleSummary(const sampling::BatchSummary& summary,
+                                const sampling::SampleOptions& options, double seconds,
                                 int threads) {
-  std::string text = FormatCount(summary.scenes, "scene") + ", " +
-                     FormatCount(summary.attempts, "attempt") + ", " +
-                     FormatCount(summary.rejections.total, "rejection");
-  std::string reasons;
-  for (const auto& [kind, n] : summary.rejections.by_kind) {
-    reasons +=
-        fmt::format("{}{} {}", reasons.empty() ? "" : ", ", lang::RejectionKindName(kind), n);
-  }
-  if (!reasons.empty()) text += " (" + reasons + ")";
+  const std::string text = FormatSamplingCounts(summary, options);
   const double rate = seconds > 0 ? summary.scenes / seconds : 0.0;
   // Whole scenes per second, or tenths below 10 (a first run that computes a reachable set).
   return text + fmt::format("; {:.2f} s, {:.{}f} scenes/s on {}", seconds, rate, rate < 10 ? 1 : 0,
@@ -89,7 +82,8 @@ class SceneWriterRun {
       const double seconds =
           std::chrono::duration<double>(std::chrono::steady_clock::now() - begin).count();
       if (!args_.quiet) {
-        PrintNote(FormatSampleSummary(summary, seconds, sampling::CountBatchThreads(options)));
+        PrintNote(FormatSampleSummary(summary, options.sample, seconds,
+                                      sampling::CountBatchThreads(options)));
         const std::string gibbs = DescribeGibbs(options.sample, summary.scenes);
         if (!gibbs.empty()) PrintNote(gibbs);
       }
@@ -137,6 +131,11 @@ class SceneWriterRun {
   // --like: the proposal fitted to the failures of the records file; --near: normals of
   // standard deviation --scale around one record's coordinates.
   bool PrepareLike(sampling::SampleOptions& sample) {
+    if (!CheckSamplerTakesPoints(sample, args_.near.empty() ? "--like" : "--near",
+                                 "leave out --sampler (the default, rejection, is exact for any "
+                                 "program)")) {
+      return false;
+    }
     std::string path = args_.near.empty() ? args_.like : args_.near;
     int64_t line = 0;
     const size_t colon = path.rfind(':');

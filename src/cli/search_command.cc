@@ -39,6 +39,8 @@ search::SearchOptions MakeSearchOptions(const SearchArgs& args, const std::atomi
   options.batch = args.batch;
   options.run.sample = MakeSampleOptions(args.sampling);
   options.run.seed = args.sampling.seed;
+  options.run.scene_options =
+      harness::SceneOptionsOf(MakeScenarioWords(args.scenario, args.sampling));
   options.run.threads = args.sampling.threads;
   // No regenerate command: a searched scene comes from a proposed point, not from (seed,
   // index); its record carries the point (coordinates) instead.
@@ -97,6 +99,11 @@ int RunAndReport(const lang::CompiledProgram& program, const harness::Controller
 }
 
 int RunSearchCommand(const SearchArgs& args) {
+  if (!CheckSamplerTakesPoints(args.sampling, "prs search",
+                               "leave out --sampler (the default, rejection, is exact for any "
+                               "program)")) {
+    return kExitUsage;
+  }
   InterruptWatch interrupt;
   const auto factory = ChooseController(args.controller, interrupt.flag());
   if (!factory) return kExitUsage;

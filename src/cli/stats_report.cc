@@ -140,9 +140,16 @@ std::string FormatOverview(const SamplingStats& stats) {
       FormatSeconds(stats.seconds));
 }
 
-std::string FormatReasonTable(const sampling::BatchSummary& s) {
+// Whole-scene rejection makes attempts at a scene; the other samplers make program runs that
+// are no such attempts (docs/cli.md, "prs stats").
+bool CountsProgramRuns(const SamplingStats& stats) {
+  return stats.gibbs.has_value() || stats.partial_rejection.has_value();
+}
+
+std::string FormatReasonTable(const sampling::BatchSummary& s, bool program_runs) {
   // "per scene" is the paper's Table II figure: rejections per valid scene.
-  TextTable table({"reason", "count", "per attempt", "per scene"}, "lrrr");
+  TextTable table({"reason", "count", program_runs ? "per run" : "per attempt", "per scene"},
+                  "lrrr");
   for (const auto& [kind, n] : s.rejections.by_kind) {
     table.AddRow({lang::RejectionKindName(kind), std::to_string(n), Percent(n, s.attempts),
                   fmt::format("{:.2f}", Ratio(n, s.scenes))});
@@ -207,7 +214,8 @@ nlohmann::ordered_json RejectionsToJson(const sampling::RejectionCounts& counts,
 std::string FormatStatsTable(const SamplingStats& stats, const lang::SourceManager& sources) {
   std::string text = FormatOverview(stats);
   if (stats.summary.rejections.total == 0) return text + "\nno rejections\n";
-  return text + FormatReasonTable(stats.summary) + FormatCulpritTable(stats.summary, sources);
+  return text + FormatReasonTable(stats.summary, CountsProgramRuns(stats)) +
+         FormatCulpritTable(stats.summary, sources);
 }
 
 std::string FormatStatsJson(const SamplingStats& stats, const lang::SourceManager& sources) {
@@ -219,15 +227,22 @@ std::string FormatStatsJson(const SamplingStats& stats, const lang::SourceManage
       {"mode", stats.naive ? "naive" : "region"},
       {"threads", stats.threads},
       {"scenes", s.scenes},
-      {"attempts", s.attempts},
-      {"acceptance_rate", Ratio(s.scenes, s.attempts)},
-      {"attempts_per_scene",
-       {{"mean", Ratio(s.attempts, s.scenes)}, {"max", stats.max_attempts_per_scene}}},
-      {"rejections", RejectionsToJson(s.rejections, sources)},
-      {"seconds", stats.seconds},
-      {"seconds_per_scene", Ratio(stats.seconds, s.scenes)},
-      {"scenes_per_second", Ratio(s.scenes, stats.seconds)},
   };
+  const nlohmann::ordered_json per_scene = {{"mean", Ratio(s.attempts, s.scenes)},
+                                            {"max", stats.max_attempts_per_scene}};
+  if (CountsProgramRuns(stats)) {
+    // No attempts: scenes + rejections.total is not what the sampler ran.
+    report["program_runs"] = s.attempts;
+    report["program_runs_per_scene"] = per_scene;
+  } else {
+    report["attempts"] = s.attempts;
+    report["acceptance_rate"] = Ratio(s.scenes, s.attempts);
+    report["attempts_per_scene"] = per_scene;
+  }
+  report["rejections"] = RejectionsToJson(s.rejections, sources);
+  report["seconds"] = stats.seconds;
+  report["seconds_per_scene"] = Ratio(stats.seconds, s.scenes);
+  report["scenes_per_second"] = Ratio(s.scenes, stats.seconds);
   report["sampler"] = stats.gibbs               ? "gibbs"
                       : stats.partial_rejection ? "partial-rejection"
                                                 : "rejection";

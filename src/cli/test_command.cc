@@ -38,6 +38,7 @@ struct TestArgs {
   bool failed_only = false;  // --failed: only its failures
   bool quiet = false;
   const CLI::Option* count_option = nullptr;  // given: -n selects among saved scenes too
+  const CLI::Option* seed_option = nullptr;   // given: refused where scenes carry their seeds
 };
 
 // Runs the episodes with `options` (sampled, or replayed) and returns their summary.
@@ -51,6 +52,11 @@ harness::RunOptions MakeRunOptions(const TestArgs& args, const std::atomic<bool>
   options.count = args.range.count;
   options.threads = args.sampling.threads;
   options.scenario_args = MakeScenarioWords(args.scenario, args.sampling);
+  std::vector<std::string> scene_words = options.scenario_args;
+  if (args.design.name != DesignArgs{}.name) {
+    scene_words.insert(scene_words.end(), {"--design", args.design.name});
+  }
+  options.scene_options = harness::SceneOptionsOf(scene_words);
   // A Sobol or Halton scene is (seed, index, design): `prs sample --design` rewrites it. A
   // lattice scene depends on the lattice's size too, so no one-scene command rewrites it.
   if (args.design.name == "sobol" || args.design.name == "halton") {
@@ -124,7 +130,7 @@ int RunAndReport(const lang::CompiledProgram* program, int64_t count, const Epis
   } catch (const harness::ControllerStartError& error) {
     progress.Erase();
     PrintError(error.what());
-    if (records) PrintNote("the records so far are in " + records->partial_path());
+    if (records) PrintNote(DescribeRecordsSoFar(*records));
     return kExitScenarioError;
   } catch (const sampling::BatchCancelled&) {
     progress.Erase();
@@ -140,7 +146,7 @@ int RunAndReport(const lang::CompiledProgram* program, int64_t count, const Epis
 }
 
 // Items [--start, --start + -n) of `total` saved scenes, all from --start without -n; nullopt
-// after a usage error when --start is past the last one.
+// after a usage error when --start is past the last one or -n asks for more than are left.
 std::optional<std::pair<int64_t, int64_t>> SelectSaved(const TestArgs& args, int64_t total,
                                                        const std::string& what) {
   if (args.range.start >= uint64_t(total)) {
@@ -150,7 +156,16 @@ std::optional<std::pair<int64_t, int64_t>> SelectSaved(const TestArgs& args, int
   }
   const int64_t first = int64_t(args.range.start);
   const bool counted = args.count_option && args.count_option->count() > 0;
-  return std::pair{first, counted ? std::min(args.range.count, total - first) : total - first};
+  if (counted && args.range.count > total - first) {
+    const int64_t left = total - first;
+    PrintError(fmt::format(
+        "-n {} --start {}: {} holds {}, so only {} {} left from --start {}; give -n {} or leave "
+        "out -n",
+        args.range.count, args.range.start, what, FormatCount(total, "scene"), left,
+        left == 1 ? "is" : "are", args.range.start, left));
+    return std::nullopt;
+  }
+  return std::pair{first, counted ? args.range.count : total - first};
 }
 
 // `prs test SCENES.jsonl` / `prs test DIR`: the saved scenes as they are.
@@ -163,6 +178,11 @@ int RunSavedScenes(const TestArgs& args, const harness::ControllerFactory& facto
     PrintError(args.scenario.file +
                " holds scenes, which run as they are: --replay, --design, "
                "--naive, --stable and --settle need the .prs program");
+    return kExitUsage;
+  }
+  if (args.seed_option->count() > 0) {
+    PrintError("-s: the scenes of " + args.scenario.file +
+               " carry their own seeds and run as they are; leave out -s");
     return kExitUsage;
   }
   const auto lines = ReadSavedScenes(args.scenario.file);
@@ -192,21 +212,34 @@ int RunReplayedRecords(const lang::CompiledProgram& program, const TestArgs& arg
     PrintError("--replay: the records carry their scenes' coordinates; leave out --design");
     return kExitUsage;
   }
-  const auto replayed = ReadRecordsToReplay(args.replay, program, args.failed_only);
+  if (args.seed_option->count() > 0) {
+    PrintError("--replay: the records carry their scenes' seeds; leave out -s");
+    return kExitUsage;
+  }
+  if (!CheckSamplerTakesPoints(args.sampling, "--replay",
+                               "leave out --sampler: a record's scene is made again at its "
+                               "point, whichever sampler chose it")) {
+    return kExitUsage;
+  }
+  harness::RunOptions options = MakeRunOptions(args, interrupt.flag());
+  options.spec_hash = search::CalcSpecHash(program);
+  const auto replayed =
+      ReadRecordsToReplay(args.replay, program, options.scene_options, args.failed_only);
   if (!replayed) return kExitScenarioError;
   const auto range = SelectSaved(args, int64_t(replayed->size()), args.replay);
   if (!range) return kExitUsage;
   const auto [first, count] = *range;
   const std::vector<search::ReportRecord> chosen(replayed->begin() + first,
                                                  replayed->begin() + first + count);
-  harness::RunOptions options = MakeRunOptions(args, interrupt.flag());
-  options.spec_hash = search::CalcSpecHash(program);
   // A scene drawn at coordinates is not scene (seed, index) of the stream.
   const bool at_coordinates = std::any_of(chosen.begin(), chosen.end(),
                                           [](const auto& r) { return !r.coordinates.empty(); });
   if (at_coordinates) options.scenario_args.clear();
+  // Each replayed record keeps its original's law: its search tag (an importance sample's
+  // weight) and that it is a replay, of every record or of the failures alone (chosen by
+  // outcome; a range of --start and -n is chosen by position and keeps the law).
   const harness::ReplaySourceFactory sources =
-      MakeRegeneratedSources(program, options.sample, chosen, args.replay);
+      MakeRegeneratedSources(program, options.sample, chosen, args.replay, args.failed_only);
   return RunAndReport(
       &program, count,
       [&](harness::RunOptions& run) {
@@ -268,6 +301,7 @@ CommandRunner ConfigureTestCommand(CLI::App& command) {
   AddDesignOption(command, args->design);
   command.add_flag("-q,--quiet", args->quiet, "no summary on stderr");
   args->count_option = command.get_option("-n");
+  args->seed_option = command.get_option("-s");
   command.get_option("FILE")->description(
       "the .prs scenario; or saved scenes to run as they are: a scenes file (.jsonl, from prs "
       "sample or --save-failures) or a directory of them");

@@ -9,6 +9,7 @@
 #include <filesystem>
 #include <map>
 #include <memory>
+#include <nlohmann/json.hpp>
 #include <stdexcept>
 
 #include "cli/common.h"
@@ -83,6 +84,27 @@ std::string FindMovedFeature(const std::vector<std::pair<std::string, double>>& 
   return "";
 }
 
+// " --sampler NAME" taken out of `options`.
+std::string DropSampler(const std::string& options) {
+  std::string padded(1, ' ');  // appended, not " " + ...: GCC 12's false -Wrestrict
+  padded.append(options).append(1, ' ');
+  const size_t at = padded.find(" --sampler ");
+  if (at == std::string::npos) return options;
+  const size_t name_end = padded.find(' ', at + 11);
+  std::string rest = padded.substr(0, at) + padded.substr(name_end);
+  rest.erase(0, rest.find_first_not_of(' '));
+  rest.erase(rest.find_last_not_of(' ') + 1);
+  return rest;
+}
+
+// True when the record's scene is made again under `scene_options`: the same options, but for
+// the sampler when the record holds its point (a chain's scene is a point like any other).
+bool IsSameSceneOptions(const search::ReportRecord& record, const std::string& scene_options) {
+  if (*record.scene_options == scene_options) return true;
+  return !record.coordinates.empty() &&
+         DropSampler(*record.scene_options) == DropSampler(scene_options);
+}
+
 }  // namespace
 
 std::optional<std::vector<SavedSceneLine>> ReadSavedScenes(const std::string& path) {
@@ -131,7 +153,8 @@ harness::ReplaySourceFactory MakeSavedSceneSources(const std::vector<SavedSceneL
 }
 
 std::optional<std::vector<search::ReportRecord>> ReadRecordsToReplay(
-    const std::string& path, const lang::CompiledProgram& program, bool failed_only) {
+    const std::string& path, const lang::CompiledProgram& program,
+    const std::string& scene_options, bool failed_only) {
   const std::optional<std::vector<std::string>> lines = ReadLines(path);
   if (!lines) return std::nullopt;
   std::vector<search::ReportRecord> records;
@@ -153,11 +176,18 @@ std::optional<std::vector<search::ReportRecord>> ReadRecordsToReplay(
                       path, record.line));
       return std::nullopt;
     }
-    if (!record.coordinates.empty() && record.spec != spec) {
+    if ((!record.coordinates.empty() || !record.spec.empty()) && record.spec != spec) {
       PrintError(
           fmt::format("{}:{}: the record was drawn from another program (fingerprint "
                       "'{}', this one's '{}'): replay it with the program it was run with",
                       path, record.line, record.spec, spec));
+      return std::nullopt;
+    }
+    if (record.scene_options && !IsSameSceneOptions(record, scene_options)) {
+      PrintError(fmt::format(
+          "{}:{}: the record's scenes were made with the options '{}', this replay's are '{}': "
+          "replay it with the options it was run with",
+          path, record.line, *record.scene_options, scene_options));
       return std::nullopt;
     }
     if (!failed_only || record.failed()) kept.push_back(std::move(record));
@@ -171,7 +201,8 @@ std::optional<std::vector<search::ReportRecord>> ReadRecordsToReplay(
 
 harness::ReplaySourceFactory MakeRegeneratedSources(
     const lang::CompiledProgram& program, const sampling::SampleOptions& options,
-    const std::vector<search::ReportRecord>& records, const std::string& records_path) {
+    const std::vector<search::ReportRecord>& records, const std::string& records_path,
+    bool failed_only) {
   std::map<std::pair<uint64_t, uint64_t>, std::vector<double>> points;
   int dimension = 0;
   for (const search::ReportRecord& record : records) {
@@ -180,11 +211,12 @@ harness::ReplaySourceFactory MakeRegeneratedSources(
     points[{*record.seed, record.index}] = record.coordinates;
   }
   auto shared_points = std::make_shared<RecordPoints>(dimension, std::move(points));
-  return [&program, options, &records, &records_path, shared_points]() -> harness::ReplaySource {
+  return [&program, options, &records, &records_path, shared_points,
+          failed_only]() -> harness::ReplaySource {
     sampling::SampleOptions sample = options;
     sample.points = shared_points->dimension() > 0 ? shared_points.get() : nullptr;
     auto sampler = std::make_shared<sampling::SceneSampler>(program, sample);
-    return [sampler, shared_points, &records, &records_path](int64_t item) {
+    return [sampler, shared_points, &records, &records_path, failed_only](int64_t item) {
       const search::ReportRecord& record = records[size_t(item)];
       harness::ReplayScene scene{sampler->Sample(*record.seed, record.index), {}};
       const std::string moved =
@@ -195,6 +227,10 @@ harness::ReplaySourceFactory MakeRegeneratedSources(
             "the program, parameters and sampling options it was run with",
             records_path, record.line, record.index, *record.seed, moved));
       }
+      if (!record.search_json.empty()) scene.search = nlohmann::json::parse(record.search_json);
+      scene.replay = {{"of", records_path},
+                      {"failed_only", failed_only || record.replay_failed_only}};
+      scene.scene_options = record.scene_options;  // the scenes' law is the original's
       return scene;
     };
   };

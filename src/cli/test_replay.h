@@ -32,17 +32,22 @@ std::optional<std::vector<SavedSceneLine>> ReadSavedScenes(const std::string& pa
 /// controller gets the line itself.
 harness::ReplaySourceFactory MakeSavedSceneSources(const std::vector<SavedSceneLine>& lines);
 
-/// The records of an earlier run to replay, checked against `program`: a record drawn at
-/// coordinates must name this program's fingerprint. Only failures when `failed_only`.
-/// Nullopt after printing what is wrong.
+/// The records of an earlier run to replay, checked against `program`: a record that names a
+/// fingerprint (and every record drawn at coordinates) must name this program's, and one
+/// that names its scene options must name `scene_options` (harness::SceneOptionsOf). Only
+/// failures when `failed_only`. Nullopt after printing what is wrong.
 std::optional<std::vector<search::ReportRecord>> ReadRecordsToReplay(
-    const std::string& path, const lang::CompiledProgram& program, bool failed_only);
+    const std::string& path, const lang::CompiledProgram& program,
+    const std::string& scene_options, bool failed_only);
 
 /// Scene (seed, index) of each record, at its coordinates when it has some (as the first
 /// attempt), each checked against the record's features: a scene that differs throws
-/// std::runtime_error naming the record's line and the first feature that moved.
+/// std::runtime_error naming the record's line and the first feature that moved. Each scene
+/// carries its record's search tag and a replay tag {"of": records_path, "failed_only"}, so
+/// the replay's records keep their law (failed_only: chosen by outcome).
 harness::ReplaySourceFactory MakeRegeneratedSources(
     const lang::CompiledProgram& program, const sampling::SampleOptions& options,
-    const std::vector<search::ReportRecord>& records, const std::string& records_path);
+    const std::vector<search::ReportRecord>& records, const std::string& records_path,
+    bool failed_only);
 
 }  // namespace prs::cli

@@ -1,5 +1,6 @@
 // The export rules (docs/export.md): names, shape from `shape_type`, colour from `color`, a free
-// body when `mass` is a positive number, inertia of a solid box or cylinder.
+// body when `mass` is a positive number, inertia of a solid box or cylinder, contacts unless
+// `allowCollisions`.
 #include "export/body_rules.h"
 
 #include <fmt/format.h>
@@ -163,6 +164,12 @@ Body MakeBody(const ObjectFacts& facts, NameTable& names, std::vector<std::strin
   body.mass_kg = ReadMass(facts, body.shape, label, warnings);
   body.inertia_diag = CalcInertiaDiag(body.shape, body.size, body.mass_kg);
   body.collides = !facts.allow_collisions && body.shape != Shape::kNone;
+  if (body.is_free() && !body.collides) {
+    warnings.push_back(fmt::format(
+        "{}: a mass and allowCollisions: True make a free body without contacts, which falls "
+        "through whatever holds it up in a simulator (--stable and --settle refuse it)",
+        label));
+  }
   body.fovy_deg = ReadFovy(facts, label, warnings);
   return body;
 }

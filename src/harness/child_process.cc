@@ -160,12 +160,23 @@ bool ReadInto(int fd, std::string& tail, size_t keep) {
   return true;
 }
 
+ExitStatus ReadShellExitCode(int code) {
+  // Signals 1 to 31 are the ones with names (sigabbrev_np); the real-time ones above are not
+  // sent by crashes, and 160 to 255 stay exit codes.
+  constexpr int kLastNamedSignal = 31;
+  const int signal_number = code - 128;
+  if (signal_number >= 1 && signal_number <= kLastNamedSignal) {
+    return {true, signal_number, code};
+  }
+  return {false, code};
+}
+
 ExitStatus Reap(pid_t pid) {
   int status = 0;
   while (::waitpid(pid, &status, 0) < 0 && errno == EINTR) {
   }
   if (WIFSIGNALED(status)) return {true, WTERMSIG(status)};
-  return {false, WEXITSTATUS(status)};
+  return ReadShellExitCode(WEXITSTATUS(status));
 }
 
 std::string DescribeExit(const ExitStatus& status, std::string_view stderr_tail,
@@ -173,8 +184,14 @@ std::string DescribeExit(const ExitStatus& status, std::string_view stderr_tail,
   std::string text;
   if (status.signaled) {
     const char* name = ::sigabbrev_np(status.code);
+    std::string about;
+    if (name) about = std::string("SIG") + name;
+    if (status.shell_status != 0) {
+      about += fmt::format("{}/bin/sh reported exit status {}", about.empty() ? "" : "; ",
+                           status.shell_status);
+    }
     text = fmt::format("{} was killed by signal {}{}", who, status.code,
-                       name ? std::string(" (SIG") + name + ")" : "");
+                       about.empty() ? "" : " (" + about + ")");
   } else {
     text = fmt::format("{} exited with code {}", who, status.code);
   }

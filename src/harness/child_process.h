@@ -77,13 +77,23 @@ bool ReadInto(int fd, std::string& tail, size_t keep);
 struct ExitStatus {
   bool signaled = false;
   int code = 0;  // exit code, or the signal number
+  /// When `signaled` because /bin/sh reported that the command it ran was killed by signal N:
+  /// the shell's exit status, 128 + N. 0 when the process itself was killed, or exited.
+  int shell_status = 0;
 };
 
-/// Waits for the process and returns how it ended.
+/// How `/bin/sh -c` ended, from its exit code: a shell reports a command killed by signal N as
+/// the exit status 128 + N, so a code from 129 to 159 (N a signal from 1 to 31, SIGHUP to
+/// SIGSYS) is read as death by signal N (with shell_status set); any other code as itself.
+ExitStatus ReadShellExitCode(int code);
+
+/// Waits for the process and returns how it ended: killed by a signal, or its exit code read by
+/// ReadShellExitCode (every process the harness reaps is a `/bin/sh -c`).
 ExitStatus Reap(pid_t pid);
 
 /// "the controller exited with code 3; its last error line: ..." (or "was killed by signal 9
-/// (SIGKILL)"), `who` naming the program.
+/// (SIGKILL)", and "signal 11 (SIGSEGV; /bin/sh reported exit status 139)" when the shell
+/// reported it), `who` naming the program.
 std::string DescribeExit(const ExitStatus& status, std::string_view stderr_tail,
                          std::string_view who = "the controller");
 

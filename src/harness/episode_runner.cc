@@ -67,7 +67,10 @@ EpisodeRecord EpisodeRunner::Run(const sampling::SampledScene& scene, std::strin
   record.index = scene.index;
   record.coordinates = scene.coordinates;
   record.features = CalcSceneFeatures(scene.scene);
-  if (!record.coordinates.empty()) record.spec = options_.spec_hash;
+  if (!options_.spec_hash.empty()) {
+    record.spec = options_.spec_hash;
+    record.scene_options = options_.scene_options;
+  }
   std::unique_ptr<Controller> controller = pool_.Take();
   const auto begin = std::chrono::steady_clock::now();
   record.result = RunGuarded(*controller, scene, scene_json);

@@ -108,11 +108,13 @@ void ReapInto(pid_t pid, ExecAnswer& answer) {
   if (answer.end != ExecAnswer::End::kExited) return;
   if (status.signaled) answer.end = ExecAnswer::End::kSignaled;
   answer.code = status.code;
+  answer.shell_status = status.shell_status;
 }
 
 std::string DescribeStatus(const ExecAnswer& answer) {
-  return DescribeExit({answer.end == ExecAnswer::End::kSignaled, answer.code},
-                      answer.stderr_tail);
+  return DescribeExit(
+      {answer.end == ExecAnswer::End::kSignaled, answer.code, answer.shell_status},
+      answer.stderr_tail);
 }
 
 }  // namespace

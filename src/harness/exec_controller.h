@@ -23,13 +23,17 @@ struct ExecAnswer {
   enum class End { kExited, kSignaled, kTimedOut, kCancelled };
   End end = End::kExited;
   int code = 0;             // exit code, or signal number for kSignaled
+  /// For kSignaled: the exit status 128 + N by which /bin/sh reported its command's death by
+  /// signal N; 0 when the shell itself was killed.
+  int shell_status = 0;
   std::string stdout_tail;  // the end of its stdout (the last 64 KiB at least)
   std::string stderr_tail;  // the end of its stderr
 };
 
 /// Turns what the process did into an outcome: its last non-empty stdout line when that is a
 /// JSON object with an "outcome" (a malformed one gives "bad-answer"), else its exit status
-/// (0 success, "exit-N", "signal-N"), or "timeout" / "cancelled".
+/// (0 success, "exit-N", "signal-N" for kSignaled), or "timeout" / "cancelled". An exit status
+/// 128 + N is kSignaled already (internal::Reap reads the shell's report of a signal).
 EpisodeResult InterpretAnswer(const ExecAnswer& answer, double timeout_s);
 
 class ExecController : public Controller {

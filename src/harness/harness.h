@@ -71,11 +71,18 @@ struct EpisodeRecord {
   std::string regenerate;   // failures only: the `prs sample` command that rewrites the scene
   /// The scene coordinates the scene was drawn at (designs and searches), else empty.
   std::vector<double> coordinates;
-  /// The program's fingerprint (search::CalcSpecHash) when `coordinates` are set, so that the
-  /// coordinates are never read back against another program.
+  /// The program's fingerprint (search::CalcSpecHash) and the options that shape its scenes
+  /// (SceneOptionsOf: "--settle=3 --sampler gibbs", "" for the defaults), set whenever a
+  /// program made the scene (empty for scenes read from files), so that records are never
+  /// read back, replayed or compared against another program or other scenes.
   std::string spec;
-  /// Set by searches: {"strategy": ..., "generation": ...} (docs/search.md), else null.
+  std::string scene_options;
+  /// Set by searches: {"strategy": ..., "generation": ...} (docs/search.md), else null. A
+  /// replay keeps its record's (with an importance sample's weight).
   nlohmann::json search;
+  /// Set by replays (`prs test --replay`): {"of": RECORDS, "failed_only": bool}, else null.
+  /// A replay of only the failures is chosen by outcome, so its shares estimate nothing.
+  nlohmann::json replay;
   /// The scene's features for failure reports (docs/search.md, "Failure maps"): per object,
   /// "NAME.x", "NAME.y", "NAME.z" (metres) and "NAME.yaw" (radians), in scene order.
   std::vector<std::pair<std::string, double>> features;
@@ -109,8 +116,10 @@ struct RunOptions {
   std::function<void(const std::string&)> on_warning;
   /// Polled between episodes; once true the run stops with sampling::BatchCancelled.
   const std::atomic<bool>* cancel = nullptr;
-  /// Copied into each record drawn at scene coordinates (EpisodeRecord::spec).
+  /// Copied into each record of a scene the program made (EpisodeRecord::spec), with
+  /// scene_options (EpisodeRecord::scene_options).
   std::string spec_hash;
+  std::string scene_options;
 };
 
 struct RunSummary {
@@ -133,6 +142,11 @@ RunSummary RunEpisodes(const lang::CompiledProgram& program, const ControllerFac
 struct ReplayScene {
   sampling::SampledScene sampled;
   std::string scene_json;
+  /// Copied into the episode's record (EpisodeRecord::search, EpisodeRecord::replay).
+  nlohmann::json search = nullptr, replay = nullptr;
+  /// When set, the record's scene_options instead of RunOptions::scene_options: the options
+  /// of the run that first drew the scene (a Gibbs chain's point replayed without the chain).
+  std::optional<std::string> scene_options = std::nullopt;
 };
 /// Makes the scene of replay item `item` (0 for the first). One per worker thread, so that it
 /// may keep per-thread state (a sampling::SceneSampler); exceptions stop the replay.
@@ -161,14 +175,21 @@ struct OutcomeRow {
 std::vector<OutcomeRow> TabulateOutcomes(const std::vector<EpisodeRecord>& records);
 
 /// One JSON Lines record: seed, index, outcome, detail, score (when reported), wall_s, extra,
-/// coordinates, spec and search (when set), features, and for failures regenerate (and
-/// saved_scene when saved). No trailing newline.
+/// coordinates (when set), spec and scene_options (when spec is set), search and replay (when
+/// set), features, and for failures regenerate (and saved_scene when saved). No trailing
+/// newline.
 std::string FormatRecordJson(const EpisodeRecord& record);
 
 /// `prs sample ARGS... -s S --start I -n 1`, each argument quoted for a POSIX shell when it
 /// needs to be.
 std::string FormatRegenerateCommand(const std::vector<std::string>& scenario_args, uint64_t seed,
                                     uint64_t index);
+
+/// The options among `scenario_words` (FILE, then -I, -p, --naive, --sampler, --stable...,
+/// --settle, --design as prs sample takes them) that shape the scenes beyond the program's
+/// fingerprint, which holds the files and -p: the rest after FILE without -I and -p pairs,
+/// joined by spaces ("" for the defaults).
+std::string SceneOptionsOf(const std::vector<std::string>& scenario_words);
 
 /// `word` as one POSIX shell word: unchanged when it is plain, else in single quotes.
 std::string QuoteForShell(const std::string& word);

@@ -48,8 +48,12 @@ std::string FormatRecordJson(const EpisodeRecord& record) {
   line["extra"] = nlohmann::ordered_json::parse(
       record.result.extra.dump(-1, ' ', false, nlohmann::json::error_handler_t::replace));
   if (!record.coordinates.empty()) line["coordinates"] = record.coordinates;
-  if (!record.spec.empty()) line["spec"] = record.spec;
+  if (!record.spec.empty()) {
+    line["spec"] = record.spec;
+    line["scene_options"] = record.scene_options;
+  }
   if (!record.search.is_null()) line["search"] = record.search;
+  if (!record.replay.is_null()) line["replay"] = record.replay;
   if (!record.features.empty()) {
     nlohmann::ordered_json features = nlohmann::ordered_json::object();
     for (const auto& [name, value] : record.features) features[name] = value;
@@ -75,6 +79,19 @@ std::vector<std::pair<std::string, double>> CalcSceneFeatures(const lang::Scene&
     features.emplace_back(name + ".yaw", std::atan2(R_WO(1, 0), R_WO(0, 0)));
   }
   return features;
+}
+
+std::string SceneOptionsOf(const std::vector<std::string>& scenario_words) {
+  std::string options;
+  for (size_t i = 1; i < scenario_words.size(); ++i) {
+    if (scenario_words[i] == "-I" || scenario_words[i] == "-p") {
+      ++i;  // and its value: the fingerprint holds the program's files and parameters
+      continue;
+    }
+    if (!options.empty()) options += ' ';
+    options += scenario_words[i];
+  }
+  return options;
 }
 
 std::string QuoteForShell(const std::string& word) {

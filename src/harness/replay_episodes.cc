@@ -86,7 +86,11 @@ void RunWorker(ReplayState& state, const ReplaySourceFactory& sources,
     try {
       if (!source) source = sources();
       ReplayScene scene = source(item);
-      state.Finish(item, runner.Run(scene.sampled, std::move(scene.scene_json)));
+      EpisodeRecord record = runner.Run(scene.sampled, std::move(scene.scene_json));
+      record.search = std::move(scene.search);
+      record.replay = std::move(scene.replay);
+      if (scene.scene_options && !record.spec.empty()) record.scene_options = *scene.scene_options;
+      state.Finish(item, std::move(record));
     } catch (...) {
       state.Fail(item, std::current_exception());
     }

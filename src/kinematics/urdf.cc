@@ -9,8 +9,10 @@
 #include <cctype>
 #include <cmath>
 #include <cstdio>
+#include <map>
 #include <mutex>
 #include <numbers>
+#include <set>
 #include <sstream>
 #include <vector>
 
@@ -232,6 +234,95 @@ void CheckIsTree(const urdf::ModelInterface& model, const std::string& label) {
   }
 }
 
+// A joint of the document as written: from its parent link to its child link.
+struct JointEdge {
+  std::string joint;
+  std::string child;
+};
+
+// "'a' -> 'b' -> 'c' -> 'a'", the middle of a long loop left out.
+std::string FormatLoop(const std::vector<std::string>& links) {
+  constexpr size_t kShownAtEachEnd = 4;
+  std::string text;
+  for (size_t i = 0; i < links.size(); ++i) {
+    if (i == kShownAtEachEnd && links.size() > 2 * kShownAtEachEnd + 1) {
+      text += " -> ... (" + std::to_string(links.size() - 2 * kShownAtEachEnd) + " more)";
+      i = links.size() - kShownAtEachEnd;
+    }
+    text += (i == 0 ? "'" : " -> '") + links[i] + "'";
+  }
+  return text;
+}
+
+// Refuses joints that make a loop (a link that is its own ancestor), read from the XML itself
+// before urdfdom sees it: urdfdom then finds no root link and says only that the robot "is not
+// a valid tree", naming no link. The walk starts at the links that are no joint's child, then
+// at the others in document order; the joint that leads back to a link on the current path
+// closes the loop, and is named with that link.
+void CheckJointsMakeNoLoop(const TiXmlElement& robot, const std::string& label) {
+  std::map<std::string, std::vector<JointEdge>> children;  // by parent link, document order
+  std::vector<std::string> parents;                        // in document order, once each
+  std::set<std::string> child_links;
+  for (const TiXmlElement* j = robot.FirstChildElement("joint"); j;
+       j = j->NextSiblingElement("joint")) {
+    const TiXmlElement* parent = j->FirstChildElement("parent");
+    const TiXmlElement* child = j->FirstChildElement("child");
+    const char* parent_link = parent ? parent->Attribute("link") : nullptr;
+    const char* child_link = child ? child->Attribute("link") : nullptr;
+    if (!parent_link || !child_link) continue;  // urdfdom says what is missing
+    const char* name = j->Attribute("name");
+    auto [it, added] = children.try_emplace(parent_link);
+    if (added) parents.push_back(parent_link);
+    it->second.push_back({name ? name : "", child_link});
+    child_links.insert(child_link);
+  }
+  std::vector<std::string> starts;
+  for (const std::string& link : parents) {
+    if (!child_links.count(link)) starts.push_back(link);
+  }
+  starts.insert(starts.end(), parents.begin(), parents.end());
+  enum class Mark { kOnPath, kDone };
+  std::map<std::string, Mark> marks;
+  for (const std::string& start : starts) {
+    if (marks.count(start)) continue;
+    // Depth first, without recursion (a fuzzed file may chain thousands of links): each
+    // entry is a link on the path and the next of its joints to follow.
+    std::vector<std::pair<std::string, size_t>> path = {{start, 0}};
+    marks[start] = Mark::kOnPath;
+    while (!path.empty()) {
+      auto& [link, next] = path.back();
+      const auto found = children.find(link);
+      if (found == children.end() || next >= found->second.size()) {
+        marks[link] = Mark::kDone;
+        path.pop_back();
+        continue;
+      }
+      const JointEdge& edge = found->second[next++];
+      const auto mark = marks.find(edge.child);
+      if (mark == marks.end()) {
+        marks[edge.child] = Mark::kOnPath;
+        path.push_back({edge.child, 0});
+        continue;
+      }
+      if (mark->second == Mark::kDone) continue;
+      // edge.child is on the path: the links from it down to `link` and back make the loop.
+      std::vector<std::string> loop;
+      for (const auto& [on_path, unused] : path) {
+        if (!loop.empty() || on_path == edge.child) loop.push_back(on_path);
+      }
+      loop.push_back(edge.child);
+      const std::string closing =
+          edge.child == link
+              ? "joint '" + edge.joint + "' makes link '" + link + "' its own child"
+              : "joint '" + edge.joint + "' makes link '" + edge.child + "' a child of link '" +
+                    link + "', which is below it already";
+      throw KinematicsError(label + ": the joints do not connect the links as a tree: " + closing +
+                            ", closing the loop " + FormatLoop(loop) +
+                            "; each link needs one parent, and no link may be its own ancestor");
+    }
+  }
+}
+
 // The joints from base down to tool, in that order.
 std::vector<urdf::JointConstSharedPtr> FindPath(const urdf::LinkConstSharedPtr& base,
                                                 const urdf::LinkConstSharedPtr& tool,
@@ -384,6 +475,7 @@ Chain LoadUrdfChain(const std::string& xml_text, const std::string& file_label,
     throw KinematicsError(file_label + ": not a URDF robot description: the top element is <" +
                           (root ? root->ValueStr() : std::string()) + ">, not <robot>");
   }
+  CheckJointsMakeNoLoop(*root, file_label);
   std::string reason;
   const urdf::ModelInterfaceSharedPtr model = ParseQuietly(xml_text, &reason);
   if (!model) throw KinematicsError(file_label + ": not a valid URDF: " + reason);

@@ -312,6 +312,8 @@ const std::vector<DiagnosticKind>& DiagnosticCatalogue() {
       {"not-an-arm", "interpreter", "`reachable by` an object whose class has no `arm` property"},
       {"bad-arm", "interpreter",
        "an arm that cannot be used: unknown model, bad URDF, missing link, bad options"},
+      {"arm-reaches-nothing", "interpreter",
+       "`reachable by` an arm whose reachable set is empty (a URDF with too few joints)"},
       {"bad-camera", "interpreter", "a camera whose intrinsics are out of range (fov, aspect, near/far)"},
       {"bad-mesh", "interpreter",
        "a mesh shape that cannot be used: unknown format, unreadable or empty file, a path that "
@@ -322,6 +324,9 @@ const std::vector<DiagnosticKind>& DiagnosticCatalogue() {
       {"mesh-warning", "resolver", "(warning) a mesh that is not closed, has zero-area triangles "
                                    "or looks like it is in the wrong units"},
       {"sampling-failed", "sampler", "no valid scene within the attempt limit, or none possible"},
+      {"physics-without-contacts", "physics",
+       "--stable or --settle with an object that has a mass and allowCollisions: True (no "
+       "contacts: it falls through its support)"},
   };
   return kCatalogue;
 }

@@ -25,6 +25,20 @@ std::string Format(double x) {
   return buffer;
 }
 
+// Why an arm's reachable set can be empty, and what to change.
+std::string ExplainEmptyReach(const kinematics::Chain& chain) {
+  std::string why =
+      "an arm reaches a point when its tool can be put there with the grasp, within the joint "
+      "limits (docs/kinematics.md); ";
+  if (chain.num_joints() < 3) {
+    why += chain.num_joints() == 1 ? "with one movable joint the tool moves on a curve"
+                                   : "with two movable joints the tool moves on a surface";
+    return why + ", which holds no volume: an arm's chain needs at least three movable joints";
+  }
+  return why + "check the arm's joint limits, or ask for less: `with grasp \"any\"`, or a "
+               "smaller margin or approach";
+}
+
 }  // namespace
 
 // ---------------------------------------------------------------------------
@@ -83,14 +97,26 @@ PositionConstraint Interpreter::EvalReachableConstraint(const Specifier& s) {
     (name == "margin" ? options.margin_m : options.approach_m) = x;
   }
   if (!program_.arms) Fail(s.span, "bad-arm", "this program was compiled without its arms (compile it with lang::CompileFile)");
+  std::shared_ptr<const kinematics::Chain> chain;
   std::shared_ptr<const ArmReach> reach;
   try {
-    const auto chain = program_.arms->GetChain(text_property("arm"), text_property("arm_base"),
-                                               text_property("arm_tool"));
+    chain = program_.arms->GetChain(text_property("arm"), text_property("arm_base"),
+                                    text_property("arm_tool"));
     reach = program_.arms->GetReach(chain, options);
   } catch (const kinematics::KinematicsError& e) {
     Fail(s.span, "bad-arm", arm_name + "'s arm: " + e.what(),
          {{arm.span, true, arm_name + " is created here, with arm \"" + text_property("arm") + "\""}});
+  }
+  if (reach->cells_Base->size() == 0) {
+    // Every attempt would fail on it: say why at once, not after max_attempts empty regions.
+    const std::string model = text_property("arm");
+    Fail(s.span, "arm-reaches-nothing",
+         arm_name + "'s arm \"" + model + "\" reaches nothing: its reachable set (" +
+             reach->description + ") is empty, so no position is reachable by " + arm_name,
+         {{arm.span, true,
+           arm_name + " is created here, with arm \"" + model + "\"" +
+               (chain->name != model ? " (" + chain->name + ")" : "")},
+          {{}, false, ExplainEmptyReach(*chain)}});
   }
   const Eigen::Isometry3d X_WBase =
       kinematics::CalcArmMount(arm.p_WO, arm.R_WO.toRotationMatrix(), arm.dimensions);

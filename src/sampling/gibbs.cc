@@ -20,9 +20,12 @@ constexpr uint64_t kPilotChain = (uint64_t{1} << 40) - 1;
 
 bool IsSameStream(geometry::Rng a, geometry::Rng b) { return a.NextU64() == b.NextU64(); }
 
-[[noreturn]] void ThrowUnsupported(const std::string& why) {
+// `span`: what in the program makes it unsupported, where that is known.
+[[noreturn]] void ThrowUnsupported(const std::string& why, std::optional<lang::SourceSpan> span) {
   lang::Diagnostic d;
   d.id = "gibbs-unsupported";
+  d.has_span = span.has_value();
+  if (span) d.span = *span;
   d.message = "--sampler gibbs cannot sample this program: " + why;
   d.notes.push_back(
       {{},
@@ -83,7 +86,8 @@ class ChainEngine {
       const bool accepted = Run(&log, &rejection);
       if (log.size() >= lang::kMaxLoggedCoordinates) {
         ThrowUnsupported("it draws more than " + std::to_string(lang::kMaxLoggedCoordinates) +
-                         " numbers a scene");
+                             " numbers a scene",
+                         log.back().span);
       }
       if (log.size() > u_.size() || (accepted && log.size() != u_.size())) {
         // The run got further than ever, drawing past u from the stream: give the new
@@ -96,8 +100,9 @@ class ChainEngine {
       if (accepted) return;
       if (u_.empty() || rejection->certain) {
         ThrowUnsupported("every run is rejected the same way, before anything is drawn: " +
-                         std::string(lang::RejectionKindName(rejection->kind)) + ": " +
-                         rejection->culprit);
+                             std::string(lang::RejectionKindName(rejection->kind)) + ": " +
+                             rejection->culprit,
+                         rejection->span);
       }
       int block = -1;
       for (size_t b = 0; b < owners_.size(); ++b) {
@@ -115,7 +120,9 @@ class ChainEngine {
       }
       Redraw(block);
     }
-    if (rejections_.total == 0) ThrowUnsupported("its number of draws keeps growing");
+    if (rejections_.total == 0) {
+      ThrowUnsupported("its number of draws keeps growing", std::nullopt);
+    }
     try {
       ThrowSamplingFailure(rejections_, runs_, 0, lang::RejectionKind::kUnstable);
     } catch (const lang::ScenarioError& error) {
@@ -166,12 +173,7 @@ class ChainEngine {
     geometry::Rng rng = stream_;
     run_.coordinates = {u_.data(), static_cast<int>(u_.size()), log};
     lang::AttemptResult attempt = lang::RunAttempt(program_, rng, run_);
-    if (!log && !IsSameStream(stream_, rng)) {
-      ThrowUnsupported(
-          "a run drew more numbers than its " + std::to_string(u_.size()) +
-          " scene coordinates (a random number of objects or draws, or a region sampled by "
-          "retries)");
-    }
+    if (!log && !IsSameStream(stream_, rng)) ThrowDrewMore();
     if (auto* scene = std::get_if<lang::Scene>(&attempt)) {
       std::optional<lang::Rejection> failed =
           options_.accept ? options_.accept(*scene) : std::nullopt;
@@ -189,7 +191,25 @@ class ChainEngine {
   }
 
   void Redraw(int block) {
+    redrawn_ = block;
     for (int j : blocks_[block]) u_[j] = points_.Uniform01();
+  }
+
+  // A run read the stream past u: the block just redrawn changed how many numbers a run draws
+  // (a random count of objects, a loop's), so the refusal points at that block's draw.
+  [[noreturn]] void ThrowDrewMore() const {
+    std::string what = "a run drew more numbers than its " + std::to_string(u_.size()) +
+                       " scene coordinates";
+    std::optional<lang::SourceSpan> span;
+    if (redrawn_ >= 0) {
+      const int first = blocks_[static_cast<size_t>(redrawn_)].front();
+      span = coordinates_[static_cast<size_t>(first)].span;
+      what += " when " + coordinates_[static_cast<size_t>(first)].name +
+              " was redrawn: it decides how many objects or draws a run makes";
+    } else {
+      what += " (a random number of objects or draws, or a region sampled by retries)";
+    }
+    ThrowUnsupported(what, span);
   }
 
   // One block per object (its position, orientation and property draws together), and one per
@@ -197,6 +217,7 @@ class ChainEngine {
   void MakeBlocks(const std::vector<lang::CoordinateInfo>& log) {
     blocks_.clear();
     owners_.clear();
+    coordinates_ = log;
     std::map<std::string, size_t> block_of;
     for (size_t j = 0; j < log.size(); ++j) {
       const std::string owner = OwnerOf(log[j].name);
@@ -220,6 +241,8 @@ class ChainEngine {
   std::vector<double> u_;
   std::vector<std::vector<int>> blocks_;
   std::vector<std::string> owners_;
+  std::vector<lang::CoordinateInfo> coordinates_;  // what each coordinate is, and its draw
+  int redrawn_ = -1;                               // the block Redraw drew last
   lang::Scene scene_;
   int64_t runs_ = 0;
   RejectionCounts rejections_;

@@ -32,10 +32,13 @@ constexpr int kStructureAttempts = 256;
 
 bool IsSameStream(geometry::Rng a, geometry::Rng b) { return a.NextU64() == b.NextU64(); }
 
-[[noreturn]] void ThrowUnsupported(const std::string& why, lang::SourceSpan span = {}) {
+// `span`: what in the program makes it unsupported, where that is known.
+[[noreturn]] void ThrowUnsupported(const std::string& why,
+                                   std::optional<lang::SourceSpan> span = std::nullopt) {
   lang::Diagnostic d;
   d.id = "partial-rejection-unsupported";
-  d.span = span;
+  d.has_span = span.has_value();
+  if (span) d.span = *span;
   d.message = "--sampler partial-rejection cannot sample this program: " + why;
   d.notes.push_back({{},
                      false,

@@ -88,6 +88,7 @@ SceneSampler::SceneSampler(const lang::CompiledProgram& program, SampleOptions o
   if (options_.gibbs && options_.points) {
     lang::Diagnostic d;
     d.id = "gibbs-unsupported";
+    d.has_span = false;  // the command line's doing, not the program's
     d.message =
         "--sampler gibbs chooses its own scene coordinates, so it cannot draw scenes at given "
         "points (--design, --like, --near, prs search, prs estimate, --replay)";
@@ -97,6 +98,7 @@ SceneSampler::SceneSampler(const lang::CompiledProgram& program, SampleOptions o
   if (options_.partial_rejection && (options_.points || options_.gibbs)) {
     lang::Diagnostic d;
     d.id = "partial-rejection-unsupported";
+    d.has_span = false;
     d.message = options_.gibbs ? "--sampler takes one method, not both gibbs and "
                                  "partial-rejection"
                                : "--sampler partial-rejection chooses its own scene coordinates, "

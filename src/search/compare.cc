@@ -42,6 +42,42 @@ std::map<SceneKey, size_t> IndexRun(const std::vector<ReportRecord>& run, const 
   return by_scene;
 }
 
+// "fingerprint 0123abcd, scene options '--settle=3'" for what identifies a run's scenes.
+std::string DescribeScenes(const ReportRecord& r) {
+  if (r.spec.empty()) return "no program fingerprint (scenes read from files, or an older prs)";
+  return fmt::format("the program fingerprint {}, scene options '{}'", r.spec,
+                     r.scene_options.value_or("(not recorded)"));
+}
+
+// Throws unless the two runs' records name the same program and scene options (when both say),
+// naming both sides: two programs' scene (seed, index) are different scenes.
+void CheckSamePrograms(const std::vector<ReportRecord>& before, const std::string& before_path,
+                       const std::vector<ReportRecord>& after, const std::string& after_path) {
+  const auto refuse = [&](const ReportRecord& b, const ReportRecord& a) {
+    throw std::runtime_error(fmt::format(
+        "{}:{} and {}:{}: the runs are not of the same scenes: {} has {}, {} has {}. A paired "
+        "comparison needs two runs of the same program with the same scene options (-p, "
+        "--settle, --stable, --sampler, --design), before and after a change to the controller",
+        before_path, b.line, after_path, a.line, before_path, DescribeScenes(b), after_path,
+        DescribeScenes(a)));
+  };
+  for (const auto* run : {&before, &after}) {
+    for (const ReportRecord& r : *run) {
+      const ReportRecord& first = run->front();
+      if (r.spec != first.spec || r.scene_options != first.scene_options) {
+        const std::string& path = run == &before ? before_path : after_path;
+        throw std::runtime_error(fmt::format(
+            "{}:{}: the record has {}, line {} has {}: one run's records must come from one "
+            "program and one set of scene options",
+            path, r.line, DescribeScenes(r), first.line, DescribeScenes(first)));
+      }
+    }
+  }
+  const ReportRecord &b = before.front(), &a = after.front();
+  if (b.spec.empty() != a.spec.empty() || b.spec != a.spec) refuse(b, a);
+  if (b.scene_options && a.scene_options && *b.scene_options != *a.scene_options) refuse(b, a);
+}
+
 // Throws unless the two records describe the same scene, as far as they say.
 void CheckSameScene(const ReportRecord& before, const std::string& before_path,
                     const ReportRecord& after, const std::string& after_path) {
@@ -62,12 +98,39 @@ void CheckSameScene(const ReportRecord& before, const std::string& before_path,
   }
   const std::map<std::string, double> after_features(after.features.begin(),
                                                      after.features.end());
+  // The same objects: without a fingerprint, the features are all that identify a scene.
+  if (before.spec.empty() && (before.features.empty() || after.features.empty())) {
+    refuse("the records carry neither a program fingerprint nor scene features to match");
+  }
   for (const auto& [name, value] : before.features) {
     const auto other = after_features.find(name);
-    if (other == after_features.end()) continue;
+    if (other == after_features.end()) {
+      if (after.features.empty()) continue;
+      refuse(fmt::format("{} has {}, the other not", before_path, name.substr(0, name.rfind('.'))));
+    }
     if (std::abs(value - other->second) > 1e-9 * std::max(1.0, std::abs(value))) {
       refuse(fmt::format("{} is {} before and {} after", name, value, other->second));
     }
+  }
+}
+
+// Throws for a run that replays only the other's failures (`prs test --replay R --failed`):
+// its scenes were chosen by the other run's outcome, so they could be fixed but never broken,
+// and a paired test on them would always find an improvement.
+void CheckNotAReplayOfFailures(const std::vector<ReportRecord>& before,
+                               const std::string& before_path,
+                               const std::vector<ReportRecord>& after,
+                               const std::string& after_path) {
+  for (const auto* run : {&before, &after}) {
+    const ReportRecord& r = run->front();
+    if (!r.replay_failed_only) continue;
+    throw std::runtime_error(fmt::format(
+        "{}:{}: the run replays only the failures of {} (--replay --failed): its scenes were "
+        "chosen because they failed, so they can be fixed but not broken, and a paired test on "
+        "them would always find an improvement. Replay every scene (`prs test PROGRAM.prs "
+        "--replay {}` without --failed) and compare that run; the --failed replay's own table "
+        "says how many of the failures pass now",
+        run == &before ? before_path : after_path, r.line, r.replay_of, r.replay_of));
   }
 }
 
@@ -193,6 +256,8 @@ PairedComparison ComparePairedRuns(std::vector<ReportRecord> before, const std::
           from_path, from_run[i].line, Describe(key), in_path, from.size(), in.size()));
     }
   };
+  CheckSamePrograms(before, before_path, after, after_path);
+  CheckNotAReplayOfFailures(before, before_path, after, after_path);
   check_all_in(before_scenes, before, before_path, after_scenes, after_path);
   check_all_in(after_scenes, after, after_path, before_scenes, before_path);
   PairedComparison c;

@@ -9,15 +9,16 @@
 #include <cmath>
 #include <map>
 #include <nlohmann/json.hpp>
+#include <set>
 #include <stdexcept>
 
+#include "search/intervals.h"
 #include "search/like.h"
 #include "search/search.h"
 
 namespace prs::search {
 namespace {
 
-constexpr double kZ95 = 1.959963984540054;
 constexpr double kSamplingWidening = 2.5;
 constexpr double kExploreShare = 0.1;  // of the budget
 constexpr double kWalkShare = 0.1;     // of the budget
@@ -286,7 +287,8 @@ bool MixturePoints::Point(uint64_t seed, uint64_t index, int64_t attempt, double
   return true;
 }
 
-Estimate CalcEstimate(const std::vector<WeightedOutcome>& records) {
+Estimate CalcEstimate(const std::vector<WeightedOutcome>& records,
+                      const std::vector<std::string>& also_seen) {
   if (records.empty()) throw std::invalid_argument("no records to estimate from");
   Estimate estimate;
   estimate.episodes = int64_t(records.size());
@@ -300,6 +302,7 @@ Estimate CalcEstimate(const std::vector<WeightedOutcome>& records) {
     total += r.weight;
     squares += r.weight * r.weight;
     share = std::min(share, r.uniform_share);
+    estimate.iid = estimate.iid && r.weight == 1 && r.uniform_share == 1;
     if (r.outcome == "success") continue;
     failed[r.outcome].first += r.weight;
     ++failed[r.outcome].second;
@@ -309,6 +312,12 @@ Estimate CalcEstimate(const std::vector<WeightedOutcome>& records) {
   const bool normalised =
       std::any_of(records.begin(), records.end(), [](const auto& r) { return r.normalised; });
   const double n = double(records.size());
+  // No failure of a kind in n draws from the proposal: P(that kind | proposal) <= 1 - 0.05^(1/n)
+  // at 95 %, and p = E[w 1F] / E[w] <= P(fail | proposal) / (share * mean weight), as
+  // w <= 1 / share.
+  const double bound_proposal = 1 - std::pow(0.05, 1 / n);
+  const double mean_weight = normalised ? total / n : 1.0;
+  const double upper_bound = std::min(1.0, bound_proposal / (share * mean_weight));
   for (const auto& [outcome, weight_and_count] : failed) {
     // Self-normalised, sum w 1F / sum w, with the delta method's variance; or, when the weights'
     // mean is known to be 1, the plain mean of w 1F with its sample variance.
@@ -321,29 +330,32 @@ Estimate CalcEstimate(const std::vector<WeightedOutcome>& records) {
                              : (r.weight * f - p) * (r.weight * f - p);
     }
     variance /= normalised ? total * total : n * (n - 1);
-    const double half = kZ95 * std::sqrt(variance);
-    o.ci_low = std::max(0.0, o.p - half);
-    o.ci_high = std::min(1.0, o.p + half);
-    o.iid_episodes = variance > 0 ? o.p * (1 - o.p) / variance : 0;
+    // The exact binomial interval at the effective counts (intervals.h): right for few
+    // failures and for p near 1, where the delta method's p +- 1.96 sd is not.
+    const RateInterval ci = CalcEffectiveCountInterval(std::min(p, 1.0), variance, estimate.ess);
+    o.ci_low = ci.low;
+    o.ci_high = ci.high;
+    o.iid_episodes = variance > 0 ? o.p * (1 - o.p) / variance : estimate.ess;
     estimate.outcomes.push_back(o);
   }
   std::stable_sort(estimate.outcomes.begin(), estimate.outcomes.end(),
                    [](const auto& a, const auto& b) { return a.p > b.p; });
-  if (estimate.outcomes.empty()) {
-    // No failure in n draws from the proposal: P(fail | proposal) <= 1 - 0.05^(1/n) at 95 %,
-    // and p = E[w 1F] / E[w] <= P(fail | proposal) / (share * mean weight), as w <= 1 / share.
-    const double bound_proposal = 1 - std::pow(0.05, 1 / n);
-    const double mean_weight = normalised ? total / n : 1.0;
-    estimate.upper_bound = std::min(1.0, bound_proposal / (share * mean_weight));
+  // Failure kinds seen elsewhere (an adaptation's episodes) but not here: a row with the bound.
+  std::set<std::string> unseen(also_seen.begin(), also_seen.end());
+  unseen.erase("success");
+  for (const auto& [outcome, ignored] : failed) unseen.erase(outcome);
+  for (const std::string& outcome : unseen) {
+    estimate.outcomes.push_back({outcome, 0, 0, 0, upper_bound, 0});
   }
+  if (failed.empty()) estimate.upper_bound = upper_bound;
   return estimate;
 }
 
-std::vector<WeightedOutcome> SelectWeightedRecords(const std::vector<ReportRecord>& records,
-                                                   const std::string& path,
-                                                   const std::string& spec_hash) {
-  std::vector<WeightedOutcome> weighted, plain;
-  bool searched = false;
+WeightedRecords SelectWeightedRecords(const std::vector<ReportRecord>& records,
+                                      const std::string& path, const std::string& spec_hash) {
+  WeightedRecords weighted, plain;
+  std::set<std::string> seen;
+  const ReportRecord* refused = nullptr;  // the first record whose law gives no estimate
   for (const ReportRecord& record : records) {
     if (!spec_hash.empty() && !record.spec.empty() && record.spec != spec_hash) {
       throw std::runtime_error(fmt::format(
@@ -351,26 +363,43 @@ std::vector<WeightedOutcome> SelectWeightedRecords(const std::vector<ReportRecor
           "\"{}\")",
           path, record.line, record.spec, spec_hash));
     }
-    if (record.search_strategy == "importance") {
-      weighted.push_back({record.outcome, record.weight, record.uniform_share, record.normalised});
-    } else if (!record.search_strategy.empty()) {
-      searched = true;  // a search's or an adaptation's scenes: not drawn from the program's law
-    } else {
-      plain.push_back({record.outcome});
+    seen.insert(record.outcome);
+    const RecordLaw law = DescribeLaw(record);
+    if (law == RecordLaw::kImportance) {
+      weighted.records.push_back(
+          {record.outcome, record.weight, record.uniform_share, record.normalised});
+    } else if (law == RecordLaw::kIid) {
+      plain.records.push_back({record.outcome});
+    } else if (law != RecordLaw::kSearch) {
+      // A chain's, a design's or a replay of failures: never an estimate, whatever else the
+      // file holds. A search's records beside weighted ones are an estimate's adaptation.
+      throw std::runtime_error(fmt::format(
+          "{}:{}: {} give no estimate of how often the controller fails under the program's "
+          "law: {}",
+          path, record.line, DescribeLawInWords(law),
+          law == RecordLaw::kSelected
+              ? "estimate from the records it replays, or replay them all (without --failed)"
+          : law == RecordLaw::kChain
+              ? "run prs test without --sampler gibbs, or prs estimate"
+              : "run prs test without --design, or prs estimate"));
+    } else if (!refused) {
+      refused = &record;
     }
   }
-  if (!weighted.empty()) return weighted;
-  if (!plain.empty()) return plain;
-  throw std::runtime_error(
-      searched ? path +
-                     " holds only records of a search, whose scenes are not drawn from the "
-                     "program's law: estimate with `prs estimate`, whose records carry weights"
-               : path + " holds no record");
+  WeightedRecords& chosen = !weighted.records.empty() ? weighted : plain;
+  if (chosen.records.empty()) {
+    throw std::runtime_error(
+        refused ? fmt::format("{}:{}: {} holds only {}: estimate with `prs estimate`, whose "
+                              "records carry weights",
+                              path, refused->line, path, DescribeLawInWords(RecordLaw::kSearch))
+                : path + " holds no record");
+  }
+  chosen.outcomes_seen.assign(seen.begin(), seen.end());
+  return chosen;
 }
 
-std::vector<WeightedOutcome> ReadWeightedRecords(const std::vector<std::string>& lines,
-                                                 const std::string& path,
-                                                 const std::string& spec_hash) {
+WeightedRecords ReadWeightedRecords(const std::vector<std::string>& lines, const std::string& path,
+                                    const std::string& spec_hash) {
   return SelectWeightedRecords(ParseReportRecords(lines, path), path, spec_hash);
 }
 
@@ -505,7 +534,10 @@ EstimateSummary RunEstimate(const lang::CompiledProgram& program,
       summary.records.push_back(std::move(r));
     }
   }
-  summary.estimate = CalcEstimate(weighted);
+  // Every failure kind of every phase gets a row, a bound at least (the adaptation's too).
+  std::set<std::string> seen;
+  for (const harness::EpisodeRecord& r : summary.records) seen.insert(r.result.outcome);
+  summary.estimate = CalcEstimate(weighted, std::vector<std::string>(seen.begin(), seen.end()));
   return summary;
 }
 

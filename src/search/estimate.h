@@ -51,21 +51,28 @@ class MixturePoints : public sampling::AttemptPoints {
 /// One failure outcome's probability under the program's law.
 struct OutcomeEstimate {
   std::string outcome;
-  int64_t episodes = 0;            // weighted episodes that ended in it
-  double p = 0;                    // the self-normalised estimate
-  double ci_low = 0, ci_high = 0;  // 95 % (delta method); [0, bound] when none failed so
-  /// The i.i.d. episodes whose binomial estimate would be as precise: p (1 - p) / variance.
+  int64_t episodes = 0;  // episodes that ended in it (weighted or i.i.d.)
+  double p = 0;          // the (self-normalised) estimate
+  /// 95 %: the exact binomial interval at the estimate's effective counts (intervals.h), so
+  /// right for few failures and for p near 1; [0, bound] for a kind no episode here ended in.
+  double ci_low = 0, ci_high = 0;
+  /// The i.i.d. episodes whose binomial estimate would be as precise: p (1 - p) / variance
+  /// (the effective sample size when the variance is 0).
   double iid_episodes = 0;
 };
 
-/// What a set of weighted records says.
+/// What a set of records says.
 struct Estimate {
-  int64_t episodes = 0;  // weighted episodes (exploration and sampling)
+  int64_t episodes = 0;  // episodes (exploration and sampling when weighted)
   double ess = 0;        // effective sample size, (sum w)^2 / sum w^2
+  /// True when every record weighs 1 (i.i.d. episodes, not weighted ones).
+  bool iid = true;
   /// False when the weights degenerate (ESS under kMinEss or under 5 % of the episodes): the
   /// numbers are then not to be trusted, and `prs estimate` says so instead of printing them.
   bool reliable = true;
-  std::vector<OutcomeEstimate> outcomes;  // failures seen, largest p first
+  /// Failures seen, largest p first; then the failure kinds seen only elsewhere (an
+  /// adaptation's episodes) with no episode here, with p = 0 and [0, bound].
+  std::vector<OutcomeEstimate> outcomes;
   /// With no failure seen: an upper bound on the probability of any failure at 95 %
   /// (docs/search.md derives it from the mixture's uniform share); else 0.
   double upper_bound = 0;
@@ -85,22 +92,29 @@ struct WeightedOutcome {
 };
 
 /// The estimate of weighted outcomes (throws std::invalid_argument when there are none or a
-/// weight is not positive and finite).
-Estimate CalcEstimate(const std::vector<WeightedOutcome>& records);
+/// weight is not positive and finite). Each name of `also_seen` that is neither "success" nor
+/// among the records' outcomes gets a row with no episode and the bound.
+Estimate CalcEstimate(const std::vector<WeightedOutcome>& records,
+                      const std::vector<std::string>& also_seen = {});
+
+/// The records an estimate is made of, and every outcome seen in the file.
+struct WeightedRecords {
+  std::vector<WeightedOutcome> records;
+  std::vector<std::string> outcomes_seen;  // in any record, of any phase
+};
 
 /// The records an estimate is made of: those of the importance-sampling phase when there are
 /// any, else the i.i.d. ones (`prs test -o`, weight 1). Throws std::runtime_error
-/// "PATH:LINE: ..." for a record of another program when `spec_hash` is not empty, and when
-/// only a search's records (not drawn from the program's law) are left.
-std::vector<WeightedOutcome> SelectWeightedRecords(const std::vector<ReportRecord>& records,
-                                                   const std::string& path,
-                                                   const std::string& spec_hash);
+/// "PATH:LINE: ..." for a record of another program when `spec_hash` is not empty, and for
+/// records whose law gives no estimate (DescribeLaw): a search's, a Markov chain's, a design's
+/// and a replay of failures alone.
+WeightedRecords SelectWeightedRecords(const std::vector<ReportRecord>& records,
+                                      const std::string& path, const std::string& spec_hash);
 
 /// SelectWeightedRecords of the JSON Lines records in `lines` (`prs estimate -o`, `prs test
 /// -o`); a line that is not a record is a located error too (ParseReportRecords).
-std::vector<WeightedOutcome> ReadWeightedRecords(const std::vector<std::string>& lines,
-                                                 const std::string& path,
-                                                 const std::string& spec_hash);
+WeightedRecords ReadWeightedRecords(const std::vector<std::string>& lines, const std::string& path,
+                                    const std::string& spec_hash);
 
 struct EstimateOptions {
   int64_t budget = 0;          // episodes in all

@@ -12,9 +12,13 @@
 #include <map>
 #include <nlohmann/json.hpp>
 #include <numeric>
+#include <optional>
+#include <set>
 #include <stdexcept>
+#include <tuple>
 
 #include "search/estimate.h"
+#include "search/intervals.h"
 #include "search/report_plot.h"
 
 namespace prs::search {
@@ -93,10 +97,27 @@ TreeNode Grow(const FeatureTable& table, const std::vector<bool>& failed,
 
 std::string FormatNumber(double x) { return fmt::format("{:.4g}", x); }
 
+// A path as a Markdown link's target: what would end or break one (spaces, brackets of every
+// kind) or be read as a URL's fragment or query ('#', '?'), and '%' itself, percent-encoded, so
+// "my runs/a (1).png" still links.
+std::string FormatLinkTarget(const std::string& path) {
+  std::string out;
+  for (const char c : path) {
+    if (c == ' ' || c == '(' || c == ')' || c == '<' || c == '>' || c == '%' || c == '[' ||
+        c == ']' || c == '#' || c == '?') {
+      out += fmt::format("%{:02X}", static_cast<unsigned char>(c));
+    } else {
+      out += c;
+    }
+  }
+  return out;
+}
+
+// "k of n (x %, 95 % CI lo–hi %)" with the exact binomial interval: a subset's rate.
 std::string FormatRate(int64_t k, int64_t n) {
-  const auto [lo, hi] = CalcWilsonInterval(k, n);
+  const RateInterval ci = CalcClopperPearsonInterval(double(k), double(n));
   return fmt::format("{} of {} ({:.1f} %, 95 % CI {:.1f}–{:.1f} %)", k, n, 100 * Rate(k, n),
-                     100 * lo, 100 * hi);
+                     100 * ci.low, 100 * ci.high);
 }
 
 std::string DescribeSide(const FeatureTable& table, const Split& s, bool failure_side) {
@@ -120,56 +141,117 @@ void FormatTree(const FeatureTable& table, const TreeNode& node, int indent, std
 
 std::string FormatPercent(double p) { return fmt::format("{:#.3g} %", 100 * p); }
 
-// What the report says first: how often the controller fails under the program's law — the
-// importance-sampling estimate when the records carry weights (prs estimate -o), the shares
-// with Wilson intervals when the scenes are i.i.d. (prs test -o) — or, for a search's records,
-// that their shares do not say it. Ends where the outcome table follows.
-std::string FormatHowOften(const std::vector<ReportRecord>& records, const std::string& title) {
-  bool weighted = false, searched = false;
-  for (const ReportRecord& r : records) {
-    weighted |= r.search_strategy == "importance";
-    searched |= !r.search_strategy.empty();
+// The law of a file's records: importance when any record is weighted (an estimate's file, its
+// adaptation beside), else the one law every record shares, else none (std::nullopt: mixed).
+std::optional<RecordLaw> FindFileLaw(const std::vector<ReportRecord>& records) {
+  std::set<RecordLaw> laws;
+  for (const ReportRecord& r : records) laws.insert(DescribeLaw(r));
+  if (laws.contains(RecordLaw::kSelected)) return RecordLaw::kSelected;
+  if (laws.contains(RecordLaw::kImportance)) return RecordLaw::kImportance;
+  if (laws.size() == 1) return *laws.begin();
+  return std::nullopt;
+}
+
+// The outcome table: episodes and shares, with a 95 % interval when the shares estimate the
+// program's rates (i.i.d.: exact binomial; a chain's: the same at its effective sample size).
+std::string FormatOutcomeShares(const std::map<std::string, int64_t>& outcomes, int64_t n,
+                                std::optional<double> effective_n) {
+  std::string md = effective_n
+                       ? "| outcome | episodes | share | 95 % interval |\n|---|---|---|---|\n"
+                       : "| outcome | episodes | share |\n|---|---|---|\n";
+  for (const auto& [name, count] : outcomes) {
+    md += fmt::format("| {} | {} | {:.1f} % |", name, count, 100 * Rate(count, n));
+    if (effective_n) {
+      const double p = Rate(count, n);
+      const RateInterval ci = CalcEffectiveCountInterval(p, p * (1 - p) / *effective_n,
+                                                         *effective_n);
+      md += fmt::format(" {} – {} |", FormatPercent(ci.low), FormatPercent(ci.high));
+    }
+    md += "\n";
   }
-  if (!searched) {
-    return "## How often it fails\n\nThe scenes were drawn from the program's law (i.i.d.), so "
-           "each outcome's share estimates its probability, with a 95 % Wilson interval.\n\n";
-  }
-  if (!weighted) {
-    return "## The episodes run\n\nA search chose these scenes, so the shares below describe "
-           "these episodes, not how often the controller fails under the program's law "
-           "(`prs estimate` says that).\n\n";
-  }
-  const Estimate e = CalcEstimate(SelectWeightedRecords(records, title, ""));
+  return md;
+}
+
+// prs estimate's numbers from its records, as `prs estimate --from` prints them.
+std::string FormatImportanceEstimate(const std::vector<ReportRecord>& records,
+                                     const std::string& title) {
+  const WeightedRecords weighted = SelectWeightedRecords(records, title, "");
+  const Estimate e = CalcEstimate(weighted.records, weighted.outcomes_seen);
   std::string md = "## How often it fails (importance-sampling estimate)\n\n";
   if (!e.reliable) {
-    md += fmt::format(
-        "The weights degenerate (effective sample size {:.0f} of {} weighted episodes): no "
-        "estimate is given, as its interval could not be trusted; run `prs estimate` with a "
-        "larger --budget.\n\n",
-        e.ess, e.episodes);
-  } else if (e.outcomes.empty()) {
-    md += fmt::format(
-        "No failure in {} weighted episodes: the probability of failing is below {} (a 95 % "
-        "upper bound; a failure rarer than that may still exist).\n\n",
-        e.episodes, FormatPercent(e.upper_bound));
-  } else {
-    md +=
-        "| outcome | probability | 95 % interval | failing episodes | i.i.d. episodes for as "
-        "tight |\n|---|---|---|---|---|\n";
-    for (const OutcomeEstimate& o : e.outcomes) {
-      md += fmt::format("| {} | {} | {} – {} | {} | {:.0f} |\n", o.outcome, FormatPercent(o.p),
-                        FormatPercent(o.ci_low), FormatPercent(o.ci_high), o.episodes,
-                        o.iid_episodes);
-    }
-    md += fmt::format(
-        "\nFrom the {} weighted episodes (effective sample size {:.0f}); `prs estimate --from "
-        "{}` gives the same numbers.\n\n",
-        e.episodes, e.ess, title);
+    return md + fmt::format(
+                    "The weights degenerate (effective sample size {:.0f} of {} weighted "
+                    "episodes): no estimate is given, as its interval could not be trusted; run "
+                    "`prs estimate` with a larger --budget.\n\n",
+                    e.ess, e.episodes);
+  }
+  if (e.outcomes.empty()) {
+    return md + fmt::format(
+                    "No failure in {} weighted episodes: the probability of failing is below {} "
+                    "(a 95 % upper bound; a failure rarer than that may still exist).\n\n",
+                    e.episodes, FormatPercent(e.upper_bound));
   }
   md +=
-      "## The episodes run\n\nThe estimate drew its scenes toward failures, so the shares below "
-      "are of the episodes run, not the program's rates.\n\n";
-  return md;
+      "| outcome | probability | 95 % interval | failing episodes | i.i.d. episodes for as "
+      "tight |\n|---|---|---|---|---|\n";
+  for (const OutcomeEstimate& o : e.outcomes) {
+    md += fmt::format("| {} | {} | {} – {} | {} | {:.0f} |\n", o.outcome, FormatPercent(o.p),
+                      FormatPercent(o.ci_low), FormatPercent(o.ci_high), o.episodes,
+                      o.iid_episodes);
+  }
+  return md + fmt::format(
+                  "\nFrom the {} weighted episodes (effective sample size {:.0f}); `prs estimate "
+                  "--from {}` gives the same numbers.\n\n",
+                  e.episodes, e.ess, title);
+}
+
+// What the report says first: how often the controller fails under the program's law, as far
+// as the records' law allows (DescribeLaw) — the importance-sampling estimate for weighted
+// records, the shares with exact binomial intervals for i.i.d. ones (as `prs estimate --from`),
+// a chain's shares at its effective sample size — then the outcome table.
+std::string FormatHowOften(const std::vector<ReportRecord>& records, const std::string& title,
+                           const std::map<std::string, int64_t>& outcomes) {
+  const int64_t n = static_cast<int64_t>(records.size());
+  const std::optional<RecordLaw> law = FindFileLaw(records);
+  if (law == RecordLaw::kIid) {
+    return "## How often it fails\n\nThe scenes were drawn independently from the program's law "
+           "(i.i.d.), so each outcome's share estimates its probability, with the exact "
+           "(Clopper–Pearson) 95 % interval that `prs estimate --from` gives too.\n\n" +
+           FormatOutcomeShares(outcomes, n, double(n));
+  }
+  if (law == RecordLaw::kChain) {
+    // The failure indicator in (seed, index) order: a chain's scenes follow each other there.
+    std::vector<size_t> order(records.size());
+    std::iota(order.begin(), order.end(), 0);
+    std::stable_sort(order.begin(), order.end(), [&](size_t a, size_t b) {
+      return std::tie(records[a].seed, records[a].index) <
+             std::tie(records[b].seed, records[b].index);
+    });
+    std::vector<double> failing;
+    for (size_t i : order) failing.push_back(records[i].failed() ? 1.0 : 0.0);
+    const double ess = CalcBatchMeansEss(failing);
+    return fmt::format(
+               "## How often it fails\n\nThe scenes come from Markov chains (--sampler gibbs): "
+               "they follow the program's law but are correlated, so the {} episodes are worth "
+               "about {:.0f} independent ones (the effective sample size of failing, by batch "
+               "means in scene order). The intervals are exact binomial ones at that effective "
+               "size, approximate as the effective size is estimated.\n\n",
+               n, ess) +
+           FormatOutcomeShares(outcomes, n, ess);
+  }
+  std::string md;
+  if (law == RecordLaw::kImportance) {
+    md = FormatImportanceEstimate(records, title) +
+         "## The episodes run\n\nThe estimate drew its scenes toward failures, so the shares "
+         "below are of the episodes run, not the program's rates.\n\n";
+  } else {
+    md = fmt::format(
+        "## The episodes run\n\nThese are {}, so the shares below describe these episodes, not "
+        "how often the controller fails under the program's law (`prs estimate` says "
+        "that).\n\n",
+        law ? DescribeLawInWords(*law) : "records of scenes chosen in more than one way");
+  }
+  return md + FormatOutcomeShares(outcomes, n, std::nullopt);
 }
 
 }  // namespace
@@ -198,6 +280,16 @@ std::vector<ReportRecord> ParseReportRecords(const std::vector<std::string>& lin
     r.detail = text("detail");
     r.regenerate = text("regenerate");
     r.spec = text("spec");
+    if (j.contains("scene_options") && j["scene_options"].is_string()) {
+      r.scene_options = j["scene_options"].get<std::string>();
+    }
+    if (j.contains("replay") && j["replay"].is_object()) {
+      const nlohmann::json& replay = j["replay"];
+      r.replay_of = replay.contains("of") && replay["of"].is_string()
+                        ? replay["of"].get<std::string>()
+                        : std::string("(unnamed)");
+      r.replay_failed_only = replay.contains("failed_only") && replay["failed_only"] == true;
+    }
     if (j.contains("score") && j["score"].is_number()) r.score = j["score"].get<double>();
     if (j.contains("coordinates") && j["coordinates"].is_array()) {
       for (const auto& x : j["coordinates"]) {
@@ -214,6 +306,7 @@ std::vector<ReportRecord> ParseReportRecords(const std::vector<std::string>& lin
     r.saved_scene = text("saved_scene");
     if (j.contains("search") && j["search"].is_object()) {
       const nlohmann::json& search = j["search"];
+      r.search_json = search.dump();
       const auto number = [&](const char* key) {
         return search.contains(key) && search[key].is_number() ? search[key].get<double>() : 0.0;
       };
@@ -235,6 +328,37 @@ std::vector<ReportRecord> ParseReportRecords(const std::vector<std::string>& lin
   }
   if (records.empty()) throw std::runtime_error(path + ": no episode records");
   return records;
+}
+
+RecordLaw DescribeLaw(const ReportRecord& record) {
+  if (record.replay_failed_only) return RecordLaw::kSelected;
+  if (record.search_strategy == "importance") return RecordLaw::kImportance;
+  if (!record.search_strategy.empty()) return RecordLaw::kSearch;
+  std::string options(1, ' ');  // appended, not " " + ...: GCC 12's false -Wrestrict
+  options.append(record.scene_options.value_or("")).append(1, ' ');
+  if (options.find(" --sampler gibbs ") != std::string::npos) return RecordLaw::kChain;
+  if (options.find(" --design ") != std::string::npos) return RecordLaw::kDesign;
+  return RecordLaw::kIid;
+}
+
+std::string DescribeLawInWords(RecordLaw law) {
+  switch (law) {
+    case RecordLaw::kIid:
+      return "records of scenes drawn independently from the program's law";
+    case RecordLaw::kImportance:
+      return "prs estimate's weighted records";
+    case RecordLaw::kSearch:
+      return "records of a search, whose scenes are not drawn from the program's law";
+    case RecordLaw::kChain:
+      return "records of Markov chains (--sampler gibbs), whose scenes are correlated";
+    case RecordLaw::kDesign:
+      return "records of a design's points (--design), which are spread evenly, not drawn "
+             "independently";
+    case RecordLaw::kSelected:
+      return "records of a replay of failures alone (--replay R --failed), chosen by their "
+             "outcome";
+  }
+  return "";
 }
 
 FeatureTable BuildFeatureTable(const std::vector<ReportRecord>& records) {
@@ -314,15 +438,6 @@ std::vector<Split> RankSplits(const FeatureTable& table, const std::vector<bool>
   std::stable_sort(splits.begin(), splits.end(),
                    [](const Split& a, const Split& b) { return a.gain > b.gain; });
   return splits;
-}
-
-std::pair<double, double> CalcWilsonInterval(int64_t k, int64_t n) {
-  if (n == 0) return {0, 1};
-  constexpr double z = 1.959963984540054;
-  const double p = static_cast<double>(k) / n, nn = static_cast<double>(n);
-  const double centre = (p + z * z / (2 * nn)) / (1 + z * z / nn);
-  const double half = z * std::sqrt(p * (1 - p) / nn + z * z / (4 * nn * nn)) / (1 + z * z / nn);
-  return {std::max(0.0, centre - half), std::min(1.0, centre + half)};
 }
 
 TreeNode GrowTree(const FeatureTable& table, const std::vector<bool>& failed, int depth,
@@ -437,15 +552,9 @@ std::string FormatFailureReport(const std::vector<ReportRecord>& records,
     ++outcomes[records[i].outcome];
   }
   const int64_t n = static_cast<int64_t>(records.size());
-  std::string md = fmt::format("# Failure report: {}\n\n{} episodes; {} failed.\n\n", options.title,
-                               n, FormatRate(failures, n));
-  md += FormatHowOften(records, options.title);
-  md += "| outcome | episodes | share | 95 % CI (Wilson) |\n|---|---|---|---|\n";
-  for (const auto& [name, count] : outcomes) {
-    const auto [lo, hi] = CalcWilsonInterval(count, n);
-    md += fmt::format("| {} | {} | {:.1f} % | {:.1f}–{:.1f} % |\n", name, count,
-                      100 * Rate(count, n), 100 * lo, 100 * hi);
-  }
+  std::string md = fmt::format("# Failure report: {}\n\n{} episodes; {} failed.\n\n",
+                               options.title, n, failures);
+  md += FormatHowOften(records, options.title, outcomes);
   if (failures == 0 || failures == n) {
     md += fmt::format("\nEvery episode {}: nothing separates failures from successes.\n",
                       failures == 0 ? "succeeded" : "failed");
@@ -492,10 +601,14 @@ std::string FormatFailureReport(const std::vector<ReportRecord>& records,
                            FormatNumber(mode.mean[splits[i].feature]));
     }
     const ReportRecord& rep = records[mode.representative];
-    std::string picture;
+    std::string picture;  // the saved scene and its picture, linked as the caller gave them
     if (!rep.saved_scene.empty()) {
-      const std::string stem = rep.saved_scene.substr(0, rep.saved_scene.rfind('.'));
-      picture = fmt::format(" ![index {}]({}.png)", rep.index, stem);
+      const size_t slash = rep.saved_scene.rfind('/'), dot = rep.saved_scene.rfind('.');
+      const bool has_extension =
+          dot != std::string::npos && (slash == std::string::npos || dot > slash);
+      const std::string stem = has_extension ? rep.saved_scene.substr(0, dot) : rep.saved_scene;
+      picture = fmt::format(" [scene]({}) ![index {}]({})", FormatLinkTarget(rep.saved_scene),
+                            rep.index, FormatLinkTarget(stem + ".png"));
     }
     md += fmt::format("| {} | {} | {} | {} | index {} (line {}, {}){} |\n", m + 1, mode.description,
                       FormatRate(static_cast<int64_t>(mode.members.size()), mode.n), means,
@@ -546,18 +659,15 @@ std::string FormatFailureReport(const std::vector<ReportRecord>& records,
     md += "\n(`prs check FILE --coordinates` names u[j].)\n";
   }
   if (svg && !options.svg_path.empty()) {
-    int second = -1;
-    for (size_t i = 1; i < splits.size(); ++i) {
-      if (splits[i].feature != top.feature) {
-        second = splits[i].feature;
-        break;
-      }
-    }
+    // Against the strongest split's feature, one that is not a function of it (Cube-t.x is
+    // Cube.x shifted when the table is fixed: a diagonal line) and that best splits its sides.
+    const int second = ChooseSecondPlotFeature(table, failed, splits);
     if (second >= 0) {
       *svg = FormatScatterSvg(table, failed, top.feature, second, &top);
+      // The plot lies beside the report, so its file name is the link.
       const std::string file = options.svg_path.substr(options.svg_path.rfind('/') + 1);
       md += fmt::format("\n## The two most separating features\n\n![{} against {}]({})\n",
-                        table.names[top.feature], table.names[second], file);
+                        table.names[second], table.names[top.feature], FormatLinkTarget(file));
     }
   }
   return md;

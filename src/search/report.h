@@ -20,11 +20,16 @@ struct ReportRecord {
   std::string outcome;
   std::string detail;
   std::string regenerate;  // the command that writes the scene again (failures only)
-  std::string spec;        // the program's fingerprint (scenes at coordinates only)
+  std::string spec;        // the program's fingerprint (empty: scenes read from files, old records)
+  /// The options that shaped the scenes (harness::SceneOptionsOf), when recorded.
+  std::optional<std::string> scene_options;
   std::optional<double> score;
   std::vector<double> coordinates;
   std::vector<std::pair<std::string, double>> features;  // as recorded
-  std::string saved_scene;                               // when the scene was saved
+  /// The scene's file when it was saved (--save-failures), as recorded; the report links it
+  /// (and its picture, the same path with .png) as given, so a caller writing the report
+  /// elsewhere first makes it relative to the report's folder.
+  std::string saved_scene;
   /// The record's "search" tag: empty for scenes drawn from the program's law (prs test), else
   /// what chose the scene ("cross-entropy", "estimate-walk", "importance", ...).
   std::string search_strategy;
@@ -32,8 +37,30 @@ struct ReportRecord {
   /// program's law, the proposal's uniform share, and whether the estimate is self-normalised.
   double weight = 1, uniform_share = 1;
   bool normalised = true;
+  std::string search_json;  // the "search" object as written (a replay copies it), else ""
+  /// Set for a replay's records (`prs test --replay R`): R, and whether only R's failures
+  /// were replayed.
+  std::string replay_of;
+  bool replay_failed_only = false;
   bool failed() const { return outcome != "success"; }
 };
+
+/// How a record's scene was chosen, which decides what its outcomes can estimate.
+enum class RecordLaw {
+  kIid,         // drawn independently from the program's law (prs test, a replay of such)
+  kImportance,  // prs estimate's weighted draws: an estimate with the weights
+  kSearch,      // chosen by a search or an estimate's adaptation: not the program's law
+  kChain,       // a Markov chain's (--sampler gibbs): the program's law, but correlated
+  kDesign,      // a design's points (--design): spread evenly, not independent
+  kSelected,    // a replay of the failures alone (--failed): chosen by outcome
+};
+
+/// The law of `record`'s scene, from its search tag, replay tag and scene options.
+RecordLaw DescribeLaw(const ReportRecord& record);
+
+/// What a law's records are, for messages: "records of a search (not drawn from the
+/// program's law)", ...
+std::string DescribeLawInWords(RecordLaw law);
 
 /// Parses JSON Lines records. Throws std::runtime_error located at "PATH:LINE" for a line that
 /// is not a record or an importance-sampling record without a positive weight, and for a file
@@ -64,9 +91,6 @@ struct Split {
 /// no successes.
 std::vector<Split> RankSplits(const FeatureTable& table, const std::vector<bool>& failed);
 
-/// The Wilson score interval (95 %) of a rate of k in n.
-std::pair<double, double> CalcWilsonInterval(int64_t k, int64_t n);
-
 /// A node of the depth-2 tree: a split, and per side either a further split or a leaf.
 struct TreeNode {
   std::optional<Split> split;      // none: a leaf
@@ -93,8 +117,9 @@ std::vector<FailureMode> FindFailureModes(const FeatureTable& table,
 
 struct ReportOptions {
   std::string title;  // e.g. the results file's name
-  std::string
-      svg_path;  // when set, a scatter plot of the two best features (its file name is embedded)
+  /// When set, the scatter plot's path: it lies beside the report, which links it by its file
+  /// name.
+  std::string svg_path;
 };
 
 /// The whole report as Markdown (and the scatter plot as SVG text into *svg when asked).

@@ -7,6 +7,9 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstdint>
+#include <utility>
+#include <vector>
 
 namespace prs::search {
 namespace {
@@ -108,6 +111,106 @@ std::string FormatTick(double value, double step) {
   const int decimals = std::max(0, static_cast<int>(std::ceil(-std::log10(step) - 1e-9)));
   if (std::fabs(value) < 1e-9 * step) value = 0;  // never "-0"
   return fmt::format("{:.{}f}", value, decimals);
+}
+
+bool AreRedundant(const FeatureTable& table, int a, int b) {
+  if (a == b) return true;
+  std::vector<std::pair<double, double>> values;  // (a, b) where both are known
+  for (const auto& row : table.rows) {
+    if (!std::isnan(row[a]) && !std::isnan(row[b])) values.emplace_back(row[a], row[b]);
+  }
+  const size_t n = values.size();
+  if (n < 3) return true;
+  double mean_a = 0, mean_b = 0;
+  for (const auto& [x, y] : values) {
+    mean_a += x;
+    mean_b += y;
+  }
+  mean_a /= static_cast<double>(n);
+  mean_b /= static_cast<double>(n);
+  double var_a = 0, var_b = 0, cov = 0;
+  for (const auto& [x, y] : values) {
+    var_a += (x - mean_a) * (x - mean_a);
+    var_b += (y - mean_b) * (y - mean_b);
+    cov += (x - mean_a) * (y - mean_b);
+  }
+  var_a /= static_cast<double>(n);
+  var_b /= static_cast<double>(n);
+  cov /= static_cast<double>(n);
+  if (!(var_a > 0) || !(var_b > 0)) return true;
+  constexpr double kMaxCorrelation = 0.99;
+  if (std::fabs(cov) > kMaxCorrelation * std::sqrt(var_a * var_b)) return true;
+  // Is `other` nearly a function of `key`? Sorted by key, successive values of independent
+  // features differ by 2·var on average (squared); for other = k·key + noise by 2·var·(1 - r²).
+  // Only steps between distinct keys count (the order within ties says nothing), and at least
+  // 10 of them.
+  const auto nearly_a_function = [&](bool b_of_a) {
+    std::vector<std::pair<double, double>> sorted;  // (key, other)
+    sorted.reserve(n);
+    for (const auto& [x, y] : values) sorted.emplace_back(b_of_a ? x : y, b_of_a ? y : x);
+    std::stable_sort(sorted.begin(), sorted.end(),
+                     [](const auto& p, const auto& q) { return p.first < q.first; });
+    double squares = 0;
+    int64_t steps = 0;
+    for (size_t i = 0; i + 1 < n; ++i) {
+      if (!(sorted[i + 1].first > sorted[i].first)) continue;
+      const double step = sorted[i + 1].second - sorted[i].second;
+      squares += step * step;
+      ++steps;
+    }
+    if (steps < 10) return false;
+    const double var = b_of_a ? var_b : var_a;
+    return squares / static_cast<double>(steps) < 2 * (1 - kMaxCorrelation * kMaxCorrelation) * var;
+  };
+  return nearly_a_function(true) || nearly_a_function(false);
+}
+
+int ChooseSecondPlotFeature(const FeatureTable& table, const std::vector<bool>& failed,
+                            const std::vector<Split>& splits) {
+  if (splits.empty()) return -1;
+  const Split& top = splits.front();
+  const int features = static_cast<int>(table.names.size());
+  // The candidates: the ranked features, then the others in the table's order.
+  std::vector<int> candidates;
+  std::vector<bool> listed(table.names.size(), false);
+  for (const Split& s : splits) {
+    if (!listed[s.feature]) candidates.push_back(s.feature);
+    listed[s.feature] = true;
+  }
+  for (int f = 0; f < features; ++f) {
+    if (!listed[f]) candidates.push_back(f);
+  }
+  // The two sides of the strongest split (an unknown value goes below, as in GrowTree).
+  std::vector<size_t> sides[2];
+  for (size_t r = 0; r < table.rows.size(); ++r) {
+    const double v = table.rows[r][top.feature];
+    sides[std::isnan(v) || v <= top.threshold ? 0 : 1].push_back(r);
+  }
+  const int64_t n = static_cast<int64_t>(table.rows.size());
+  const int64_t min_leaf = std::max<int64_t>(5, n / 50);  // as the report's depth-2 tree
+  int best = -1, fallback = -1;
+  double best_gain = 0;
+  for (const int f : candidates) {
+    if (AreRedundant(table, top.feature, f)) continue;
+    if (fallback < 0) fallback = f;
+    double gain = 0;  // of the best split of f on each side, weighted by the side's share
+    for (const std::vector<size_t>& side : sides) {
+      FeatureTable one{{table.names[f]}, {}};
+      std::vector<bool> one_failed;
+      one.rows.reserve(side.size());
+      for (size_t r : side) {
+        one.rows.push_back({table.rows[r][f]});
+        one_failed.push_back(failed[r]);
+      }
+      const TreeNode node = GrowTree(one, one_failed, 1, min_leaf);
+      if (node.split) gain += static_cast<double>(side.size()) / n * node.split->gain;
+    }
+    if (gain > best_gain + 1e-12) {
+      best = f;
+      best_gain = gain;
+    }
+  }
+  return best >= 0 ? best : fallback;
 }
 
 std::string FormatScatterSvg(const FeatureTable& table, const std::vector<bool>& failed, int fx,

@@ -11,7 +11,9 @@
 #include <charconv>
 #include <cmath>
 #include <cstdio>
+#include <cstdlib>
 #include <map>
+#include <optional>
 #include <string>
 
 #include "shapes/glb_header.h"
@@ -106,6 +108,86 @@ void CorrectPrimitiveTypes(aiScene& scene) {
   }
 }
 
+// "is not a number" or, for an infinite coordinate, "is not a finite number".
+std::string DescribeNotFinite(double x, double y, double z) {
+  return std::isnan(x) || std::isnan(y) || std::isnan(z) ? "is not a number"
+                                                         : "is not a finite number";
+}
+
+// "(nan, 0, 0.5)".
+std::string FormatPoint(double x, double y, double z) {
+  char text[96];
+  std::snprintf(text, sizeof text, "(%g, %g, %g)", x, y, z);
+  return text;
+}
+
+// The first `v` line of an OBJ text whose coordinates are not all finite: "vertex 3 (counting
+// from 1, as the file's faces do), line 5: 'v nan 0 0'", with `what` set; nullopt when there is
+// none. assimp's OBJ reader copies a vertex for every face corner, so its order is not the
+// file's, and the file's numbering is what a user can look up.
+std::optional<std::string> FindObjVertexNotFinite(std::string_view text, std::string* what) {
+  int64_t vertex = 0, line_number = 0;
+  for (size_t at = 0; at < text.size();) {
+    const size_t end = std::min(text.find('\n', at), text.size());
+    const std::string line(text.substr(at, end - at));
+    at = end + 1;
+    ++line_number;
+    const size_t v = line.find_first_not_of(" \t");
+    if (v == std::string::npos || line[v] != 'v' || v + 1 >= line.size() ||
+        (line[v + 1] != ' ' && line[v + 1] != '\t')) {
+      continue;
+    }
+    ++vertex;
+    double xyz[3] = {0, 0, 0};
+    const char* p = line.c_str() + v + 1;
+    for (double& x : xyz) {
+      char* stop = nullptr;
+      x = std::strtod(p, &stop);
+      if (stop == p) break;
+      p = stop;
+    }
+    if (std::isfinite(xyz[0]) && std::isfinite(xyz[1]) && std::isfinite(xyz[2])) continue;
+    *what = DescribeNotFinite(xyz[0], xyz[1], xyz[2]);
+    std::string shown = line.substr(v, 80);
+    while (!shown.empty() && std::isspace(static_cast<unsigned char>(shown.back()))) {
+      shown.pop_back();
+    }
+    return "vertex " + std::to_string(vertex) + " (counting from 1, as the file's faces do), " +
+           "line " + std::to_string(line_number) + ": '" + shown + "'";
+  }
+  return std::nullopt;
+}
+
+// Refuses a vertex that is not a finite number, naming it, before assimp's post-processing:
+// joining identical vertices merges a NaN vertex with another one, which left only
+// "triangles of zero area" to report. The number is the file's own where the format has one
+// that assimp keeps (OBJ's `v` lines; STL: three vertices a facet, in order), else assimp's.
+void CheckVerticesAreNumbers(const aiScene& scene, std::string_view bytes,
+                             const std::string& extension) {
+  int64_t before = 0;  // vertices of the earlier meshes
+  for (unsigned m = 0; m < scene.mNumMeshes; ++m) {
+    const aiMesh& mesh = *scene.mMeshes[m];
+    for (unsigned i = 0; i < mesh.mNumVertices; ++i) {
+      const aiVector3D& p = mesh.mVertices[i];
+      if (std::isfinite(p.x) && std::isfinite(p.y) && std::isfinite(p.z)) continue;
+      std::string what = DescribeNotFinite(p.x, p.y, p.z);
+      std::optional<std::string> which;
+      if (extension == "obj") which = FindObjVertexNotFinite(bytes, &what);
+      if (!which) {
+        const int64_t k = before + i;
+        which = extension == "stl"
+                    ? "vertex " + std::to_string(k + 1) + " (counting from 1: corner " +
+                          std::to_string(k % 3 + 1) + " of facet " + std::to_string(k / 3 + 1) + ")"
+                    : "vertex " + std::to_string(i + 1) + " of mesh " + std::to_string(m + 1) +
+                          " (counting from 1, in the order assimp reads them)";
+        *which += ", " + FormatPoint(p.x, p.y, p.z);
+      }
+      throw MeshError("has a vertex that " + what + ": " + *which);
+    }
+    before += mesh.mNumVertices;
+  }
+}
+
 int CountOpenEdges(const TriangleMesh& mesh) {
   std::map<std::pair<int, int>, int> uses;
   for (const Eigen::Vector3i& t : mesh.triangles) {
@@ -155,6 +237,7 @@ std::shared_ptr<const MeshShape> LoadMeshShape(std::string_view bytes, const std
                                                      aiProcess_ValidateDataStructure,
                                                      extension.c_str());
   if (scene) {
+    CheckVerticesAreNumbers(*scene, bytes, extension);
     CorrectPrimitiveTypes(*const_cast<aiScene*>(scene));  // the importer's own scene
     scene = importer.ApplyPostProcessing(aiProcess_Triangulate | aiProcess_JoinIdenticalVertices |
                                          aiProcess_PreTransformVertices | aiProcess_SortByPType);

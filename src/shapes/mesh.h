@@ -56,9 +56,10 @@ const char* SupportedMeshFormats();
 
 /// Reads a mesh from a file's bytes; the format comes from `name`'s extension. Every triangle
 /// of every mesh in the file, with the file's node transforms applied. Throws MeshError for an
-/// unsupported extension, a file assimp cannot read, a file with no triangles, coordinates
-/// that are not finite numbers, or a mesh flat along an axis is kept (its hull is then the
-/// vertex set itself).
+/// unsupported extension, a file assimp cannot read, a file with no triangles, or a vertex
+/// whose coordinates are not finite numbers (named by its number, counted from 1: an OBJ's
+/// `v` lines with the line, an STL's facet corners). A mesh flat along an axis is kept (its
+/// hull is then the vertex set itself).
 std::shared_ptr<const MeshShape> LoadMeshShape(std::string_view bytes, const std::string& name,
                                                const std::string& path);
 

@@ -25,6 +25,12 @@ void CheckSettleOptions(const SettleOptions& options) {
     throw std::invalid_argument(fmt::format(
         "the simulated time of --settle must be a positive number, not {}", options.duration_s));
   }
+  if (options.duration_s < kMinSettleDuration_s) {
+    throw std::invalid_argument(fmt::format(
+        "the simulated time of --settle must be at least {} s, not {}: a scene is at rest once "
+        "every body is where it was {} s before (docs/physics.md)",
+        kMinSettleDuration_s, options.duration_s, kMinSettleDuration_s));
+  }
 }
 
 StabilityReport SettleScene(lang::Scene& scene, const SettleOptions& options) {
@@ -33,6 +39,7 @@ StabilityReport SettleScene(lang::Scene& scene, const SettleOptions& options) {
   simulate.duration_s = options.duration_s;
   simulate.timestep_s = kSettleTimestep_s;
   exporting::ExportScene model = exporting::MakeExportScene(scene, "settle");
+  CheckFreeBodiesCollide(scene, model, "--settle");
   model.settled = true;  // settled with the contact model its exports will carry
   const StabilityReport report =
       SimulateUnderGravity(model, simulate, /*stop_past_tolerance=*/false);
@@ -52,8 +59,9 @@ std::optional<lang::Rejection> SettleAndCheck(lang::Scene& scene, const SettleOp
     rejection.kind = lang::RejectionKind::kUnsettled;
     rejection.culprit = object.DisplayName(m.object) + " not at rest";
     rejection.span = object.span;
-    rejection.detail = fmt::format("{} was still moving at {:.3f} m/s after {:.2f} s",
-                                   object.DisplayName(m.object), m.speed_m_s, report.simulated_s);
+    rejection.detail =
+        fmt::format("{} was still moving after {:.2f} s: it {}", object.DisplayName(m.object),
+                    report.simulated_s, DescribeUnsettledMotion(m));
     return rejection;
   }
   return lang::CheckSettledScene(scene);

@@ -18,19 +18,21 @@ struct SettleOptions {
   double duration_s = 3.0;  // simulated time at most: a scene not at rest by then is unsettled
 };
 
-/// Throws std::invalid_argument when duration_s is not a positive finite number.
+/// Throws std::invalid_argument when duration_s is not a positive finite number, or is below
+/// kMinSettleDuration_s (0.5 s: rest is judged over the last 0.5 s; sim/stability.h).
 void CheckSettleOptions(const SettleOptions& options);
 
 /// Simulates the scene's free bodies under gravity until every one is at rest (within 1 cm and
-/// 0.1 rad of where it was 0.5 s before; sim/stability.h) or the time runs out, and moves each to where it ended
-/// (lang::MoveObject); sets scene.settled_s. Returns the motion (StabilityReport::at_rest
-/// false when time ran out, culprit the fastest body). Deterministic. Throws what
-/// SimulateUnderGravity throws.
+/// 0.1 rad of where it was 0.5 s before; sim/stability.h) or the time runs out, and moves each
+/// to where it ended (lang::MoveObject); sets scene.settled_s. Returns the motion
+/// (StabilityReport::at_rest false when time ran out, culprit the body furthest from rest).
+/// Deterministic. Throws what SimulateUnderGravity and CheckFreeBodiesCollide throw.
 StabilityReport SettleScene(lang::Scene& scene, const SettleOptions& options);
 
 /// SettleScene, then the checks of the settled scene: the rejection (kind kUnsettled) of a
-/// scene not at rest in time ("cube_2 was still moving at 0.3 m/s after 2 s"), with an object
-/// outside the workspace, or breaking a `require settled`; nullopt when it passes.
+/// scene not at rest in time ("cube_2 was still moving after 3.00 s: it moved 2.3 cm and turned
+/// 0.4° in the last 0.5 s (at rest: under 1.0 cm and 5.7°)"), with an object outside the
+/// workspace, or breaking a `require settled`; nullopt when it passes.
 std::optional<lang::Rejection> SettleAndCheck(lang::Scene& scene, const SettleOptions& options);
 
 /// SettleAndCheck with `options` as a scene test for the sampler (sampling::SceneTest is this

@@ -17,15 +17,23 @@
 
 namespace prs::sim {
 
+/// The least simulated time in which rest can be decided. --stable: every body must have been
+/// at rest for 0.1 s, judged from 0.1 s on (every body starts at rest). Settling: every body
+/// must be where it was 0.5 s before, so nothing can be found at rest sooner than 0.5 s. A
+/// shorter time would reject every scene, at rest or not (docs/physics.md).
+inline constexpr double kMinStableDuration_s = 0.2;
+inline constexpr double kMinSettleDuration_s = 0.5;
+
 struct StabilityOptions {
-  double duration_s = 1.0;             // simulated time at most
+  double duration_s = 1.0;             // simulated time at most (kMinStableDuration_s at least)
   double max_move_m = 0.01;            // a free body whose centre moves further is unstable
   double max_turn_rad = 0.0872664626;  // ... or that turns further (5°)
   double timestep_s = 0;               // physics step; 0: the model's (MuJoCo's 2 ms)
 };
 
 /// Throws std::invalid_argument naming the option when a value is not a positive finite
-/// number (the command line reports it as a usage error).
+/// number, or duration_s is below kMinStableDuration_s (the command line refuses such values
+/// as usage errors first).
 void CheckStabilityOptions(const StabilityOptions& options);
 
 /// How one free body moved from where the scene drew it.
@@ -34,6 +42,12 @@ struct BodyMotion {
   Eigen::Vector3d p_moved_W = Eigen::Vector3d::Zero();  // displacement of its centre
   double turned_rad = 0;                                // angle of its rotation
   double speed_m_s = 0;                                 // at the end
+  double spin_rad_s = 0;                                // at the end
+  /// --stable: the last time it was moving (faster than 5 mm/s or 0.05 rad/s), 0 if never.
+  double moving_until_s = 0;
+  /// Settling: how far it moved and turned over the last rest window compared (0.5 s).
+  double recent_move_m = 0;
+  double recent_turn_rad = 0;
   /// Where it ended: the pose of the object's frame (lang::SceneObject::p_WO, R_WO).
   Eigen::Vector3d p_end_WO = Eigen::Vector3d::Zero();
   Eigen::Quaterniond R_end_WO = Eigen::Quaterniond::Identity();
@@ -45,25 +59,39 @@ struct StabilityReport {
   /// Every free body had been at rest (below 5 mm/s and 0.05 rad/s for 0.1 s) when the
   /// simulation stopped; false when one moved past the tolerance first, or time ran out.
   bool at_rest = false;
-  /// The free body (index into free_bodies) that decided an unstable scene, else -1.
+  /// The free body (index into free_bodies) that decided an unstable scene, else -1: the one
+  /// past the tolerance; when time ran out, the one that moved last (--stable) or that was
+  /// furthest from rest over the last window (settling).
   int culprit = -1;
 };
 
 /// Simulates `scene` under gravity (MuJoCo, 2 ms steps unless options say) as described above.
-/// Deterministic.
-/// A scene without a free body is not simulated (at rest at once). Throws std::runtime_error
-/// with MuJoCo's message when it refuses the model. With `stop_past_tolerance` false (for
-/// settling, sim/settle.h) only rest or the time limit stops it, the tolerances are unused, and
-/// rest is judged by position: every free body within 1 cm and 0.1 rad of where it was 0.5 s
-/// before, checked every 0.1 s (round and mesh shapes rock in place in MuJoCo 2.2 and are
-/// never still).
+/// Deterministic. A scene without a free body is not simulated (at rest at once). With
+/// `stop_past_tolerance` false (for settling, sim/settle.h) only rest or the time limit stops
+/// it, the tolerances are unused, and rest is judged by position: every free body within 1 cm
+/// and 0.1 rad of where it was 0.5 s before, checked every 0.1 s (round and mesh shapes rock in
+/// place in MuJoCo 2.2 and are never still). Throws std::runtime_error with MuJoCo's message
+/// when it refuses the model; std::invalid_argument for options CheckStabilityOptions refuses,
+/// and when settling, for a duration_s below kMinSettleDuration_s.
 StabilityReport SimulateUnderGravity(const exporting::ExportScene& scene,
                                      const StabilityOptions& options,
                                      bool stop_past_tolerance = true);
 
+/// Settling: how a body not at rest when time ran out was moving, from its recent_move_m and
+/// recent_turn_rad: "moved 2.3 cm and turned 4.1° in the last 0.5 s (at rest: under 1 cm and
+/// 5.7°)".
+std::string DescribeUnsettledMotion(const BodyMotion& m);
+
+/// Throws lang::ScenarioError ("physics-without-contacts", at the object) when a free body of
+/// `model` (made from `scene` by MakeExportScene) has no contacts: an object with a `mass` and
+/// `allowCollisions: True`, which falls through its support, so that no scene with it could
+/// pass `check` ("--stable", "--settle").
+void CheckFreeBodiesCollide(const lang::Scene& scene, const exporting::ExportScene& model,
+                            const char* check);
+
 /// The rejection of a scene some free body of which does not stay put ("unstable", culprit the
 /// object's display name, detail e.g. "Cube#5 fell 2.04 m in 0.66 s"), or nullopt. Throws
-/// what SimulateUnderGravity throws.
+/// what SimulateUnderGravity and CheckFreeBodiesCollide throw.
 std::optional<lang::Rejection> CheckStable(const lang::Scene& scene,
                                            const StabilityOptions& options);
 

@@ -11,6 +11,7 @@
 #include "campaign/test/campaign_dir.h"
 #include "harness/registry.h"
 #include "output/scene_json.h"
+#include "search/like.h"
 #include "sampling/batch.h"
 #include "sampling/test/scene_checks.h"
 
@@ -73,6 +74,8 @@ TEST_F(CampaignTest, EpisodeRecordsEqualOneMachinesButTheirTimes) {
   run.seed = 5;
   run.count = 10;
   run.scenario_args = {"examples/table_cube.prs"};
+  run.spec_hash = search::CalcSpecHash(*CompileTableCube());  // as prs test sets it
+  run.scene_options = "";
   const harness::RunSummary single = harness::RunEpisodes(*CompileTableCube(), factory, run);
   const std::vector<std::string> merged = MergeShards(dir_, spec, false, nullptr);
   ASSERT_EQ(merged.size(), single.records.size());
@@ -82,6 +85,7 @@ TEST_F(CampaignTest, EpisodeRecordsEqualOneMachinesButTheirTimes) {
     a.erase("wall_s");
     b.erase("wall_s");
     EXPECT_EQ(a, b) << i;
+    EXPECT_EQ(a["spec"], spec.spec_hash) << "a campaign's records name their program";
   }
 }
 

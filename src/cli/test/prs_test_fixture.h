@@ -63,9 +63,11 @@ class PrsTest : public testing::Test {
   }
 
   // Runs `prs ARGS...` through the shell, capturing stdout and stderr; `env` is put before it
-  // ("PATH=/x NAME=value").
-  Result Run(const std::vector<std::string>& args, const std::string& env = "") {
-    std::string command = (env.empty() ? "" : "env " + env + " ") + Quote(PRS_BINARY);
+  // ("PATH=/x NAME=value"), and it runs in `folder` when one is given.
+  Result Run(const std::vector<std::string>& args, const std::string& env = "",
+             const fs::path& folder = {}) {
+    std::string command = folder.empty() ? "" : "cd " + Quote(folder.string()) + " && ";
+    command += (env.empty() ? "" : "env " + env + " ") + Quote(PRS_BINARY);
     for (const std::string& arg : args) command.append(" ").append(Quote(arg));
     const fs::path out = dir_ / "stdout.txt", err = dir_ / "stderr.txt";
     command.append(" >").append(Quote(out.string())).append(" 2>").append(Quote(err.string()));

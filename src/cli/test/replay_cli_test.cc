@@ -17,9 +17,14 @@ using nlohmann::json;
 
 // The records without their wall times (and, for comparing runs that name their scenes
 // differently, without saved_scene and regenerate).
+// The records without what says how each run was made: its time, files, program (a scenes file
+// has none) and replay tag.
 std::vector<json> Comparable(std::vector<json> records) {
   for (json& record : records) {
-    for (const char* key : {"wall_s", "saved_scene", "regenerate"}) record.erase(key);
+    for (const char* key :
+         {"wall_s", "saved_scene", "regenerate", "spec", "scene_options", "replay"}) {
+      record.erase(key);
+    }
   }
   return records;
 }
@@ -76,18 +81,35 @@ TEST_F(PrsTest, ReplayRegeneratesSearchAndTestRecordsAndRefusesOtherScenes) {
   r = Run({"test", Example("table_cube.prs"), "--replay", searched, "--failed", "--controller",
            "demo-reach", "-o", (dir_ / "again.jsonl").string()});
   ASSERT_EQ(r.exit_code, 0) << r.err;
-  std::vector<json> again = Comparable(ReadRecords(dir_ / "again.jsonl"));
-  for (json& record : failed) record.erase("search");
-  EXPECT_EQ(again, Comparable(failed)) << "each at its coordinates, with its outcome";
+  const std::vector<json> replayed = ReadRecords(dir_ / "again.jsonl");
+  EXPECT_EQ(Comparable(replayed), Comparable(failed))
+      << "each at its coordinates, with its outcome and its search tag";
+  for (const json& record : replayed) {
+    EXPECT_EQ(record["replay"], json({{"of", searched}, {"failed_only", true}}));
+    EXPECT_EQ(record["spec"], failed.front()["spec"]);
+  }
 
   // The same records under other sampling options, or against another program: refused.
   r = Run({"test", Example("table_cube.prs"), "--replay", searched, "--naive", "--controller",
            "demo-reach", "-o", (dir_ / "naive.jsonl").string()});
   EXPECT_EQ(r.exit_code, 1);
-  EXPECT_NE(r.err.find("search.jsonl:1: scene 0 of seed 2 is not the scene this record ran in"),
+  EXPECT_NE(r.err.find("search.jsonl:1: the record's scenes were made with the options '', this "
+                       "replay's are '--naive'"),
             std::string::npos)
       << r.err;
   EXPECT_FALSE(std::filesystem::exists(dir_ / "naive.jsonl")) << "no records for a failed run";
+  // Records that do not name their options (an older prs) are checked by their features.
+  std::string unnamed;
+  for (json record : ReadRecords(searched)) {
+    record.erase("scene_options");
+    unnamed += record.dump() + "\n";
+  }
+  r = Run({"test", Example("table_cube.prs"), "--replay", Write("old.jsonl", unnamed), "--naive",
+           "--controller", "demo-reach"});
+  EXPECT_EQ(r.exit_code, 1);
+  EXPECT_NE(r.err.find("old.jsonl:1: scene 0 of seed 2 is not the scene this record ran in"),
+            std::string::npos)
+      << r.err;
   r = Run({"test", Example("constructs.prs"), "--replay", searched, "--controller", "demo-reach"});
   EXPECT_EQ(r.exit_code, 1);
   EXPECT_NE(r.err.find("drawn from another program"), std::string::npos) << r.err;

@@ -12,6 +12,7 @@
 #include <fstream>
 #include <sstream>
 
+#include "harness/child_process.h"
 #include "harness/test/process_checks.h"
 
 namespace prs::harness {
@@ -98,6 +99,43 @@ TEST_F(ExecControllerTest, KilledBySignalIsNamed) {
   EXPECT_EQ(result.outcome, "signal-9");
   EXPECT_NE(result.detail.find("SIGKILL"), std::string::npos) << result.detail;
   EXPECT_EQ(Run("kill -TERM $$").outcome, "signal-15");
+}
+
+TEST_F(ExecControllerTest, ACommandKilledUnderTheShellIsASignalNotAnExitCode) {
+  // /bin/sh runs the command as its child and exits with 128 + N when the child dies by signal
+  // N: a segfaulting controller is signal-11, as docs/harness.md says, not exit-139.
+  const EpisodeResult segfault = Run("sh -c 'ulimit -c 0; kill -SEGV $$'; exit $?");
+  EXPECT_EQ(segfault.outcome, "signal-11");
+  EXPECT_NE(segfault.detail.find("signal 11 (SIGSEGV; /bin/sh reported exit status 139)"),
+            std::string::npos)
+      << segfault.detail;
+  EXPECT_EQ(Run("cd " + D() + " && sh -c 'kill -USR1 $$'").outcome, "signal-10");
+  // The shell's report cannot be told from an exit code of 129 to 159: read the same way.
+  EXPECT_EQ(Run("exit 130").outcome, "signal-2");
+  // Outside 128 + (1 to 31) an exit code is itself.
+  EXPECT_EQ(Run("exit 128").outcome, "exit-128");
+  EXPECT_EQ(Run("exit 160").outcome, "exit-160");
+  EXPECT_EQ(Run("exit 255").outcome, "exit-255");
+}
+
+TEST(ShellExitCodeTest, OnlyTheShellsSignalReportsBecomeSignals) {
+  using internal::ReadShellExitCode;
+  for (int code : {0, 1, 3, 127, 128, 160, 200, 255}) {
+    const internal::ExitStatus status = ReadShellExitCode(code);
+    EXPECT_FALSE(status.signaled) << code;
+    EXPECT_EQ(status.code, code);
+  }
+  for (int signal_number = 1; signal_number <= 31; ++signal_number) {
+    const internal::ExitStatus status = ReadShellExitCode(128 + signal_number);
+    EXPECT_TRUE(status.signaled) << signal_number;
+    EXPECT_EQ(status.code, signal_number);
+    EXPECT_EQ(status.shell_status, 128 + signal_number);
+  }
+  EXPECT_EQ(internal::DescribeExit({true, 9}, ""),
+            "the controller was killed by signal 9 (SIGKILL)");
+  EXPECT_EQ(internal::DescribeExit(ReadShellExitCode(139), "Segmentation fault\n"),
+            "the controller was killed by signal 11 (SIGSEGV; /bin/sh reported exit status 139); "
+            "its last error line: Segmentation fault");
 }
 
 TEST_F(ExecControllerTest, HangingControllerTimesOutAndItsChildrenDie) {

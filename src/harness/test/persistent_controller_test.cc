@@ -152,6 +152,19 @@ TEST_F(PersistentControllerTest, ChatterIsIgnoredAndTheAnswerKeepsDetailScoreAnd
   EXPECT_EQ(result.extra, nlohmann::json({{"grip_n", 3}}));
 }
 
+TEST_F(PersistentControllerTest, AWorkerWhoseShellReportsASignalGivesThatSignal) {
+  // The worker's shell exits with 128 + 11 after its child segfaults: signal-11, not exit-139.
+  const ControllerFactory factory =
+      Factory(Worker("", "[ \"$index\" = 1 ] && { sh -c 'ulimit -c 0; kill -SEGV $$'; exit $?; }"));
+  std::unique_ptr<Controller> controller = factory();
+  EXPECT_EQ(Run(*controller, 0).outcome, "success");
+  const EpisodeResult crashed = Run(*controller, 1);
+  EXPECT_EQ(crashed.outcome, "signal-11");
+  EXPECT_NE(crashed.detail.find("SIGSEGV; /bin/sh reported exit status 139"), std::string::npos)
+      << crashed.detail;
+  EXPECT_EQ(Run(*controller, 2).outcome, "success");
+}
+
 TEST_F(PersistentControllerTest, AWorkerKilledMidEpisodeFailsThatEpisodeAndTheNextGetsAFreshOne) {
   const ControllerFactory factory = Factory(Worker("", "[ \"$index\" = 1 ] && kill -9 $$"));
   std::unique_ptr<Controller> controller = factory();

@@ -7,6 +7,7 @@
 
 #include <fstream>
 #include <numbers>
+#include <set>
 #include <sstream>
 
 #include "geometry/random.h"
@@ -179,7 +180,69 @@ TEST(UrdfTest, TextThatIsNotUtf8) {
 TEST(UrdfTest, JointsThatMakeALoop) {
   // urdfdom accepts a joint from a link to itself; walking such a tree would never end.
   ExpectMessage(LoadError("joint_loop.urdf"), "joint_loop.urdf",
-                {"connect the links as a tree", "link 'b'"});
+                {"connect the links as a tree", "joint 'j3' makes link 'b' its own child",
+                 "closing the loop 'b' -> 'b'"});
+}
+
+// A robot of links a, b, c, ... and one revolute joint for each pair in `joints`.
+std::string RobotWithJoints(const std::vector<std::pair<std::string, std::string>>& joints) {
+  std::string text = "<?xml version=\"1.0\"?>\n<robot name=\"r\">\n";
+  std::set<std::string> links;
+  for (const auto& [parent, child] : joints) links.insert({parent, child});
+  for (const std::string& link : links) text += "  <link name=\"" + link + "\"/>\n";
+  for (size_t i = 0; i < joints.size(); ++i) {
+    text.append("  <joint name=\"j").append(std::to_string(i + 1));
+    text += "\" type=\"revolute\"><parent link=\"" + joints[i].first + "\"/><child link=\"" +
+            joints[i].second +
+            "\"/><axis xyz=\"0 0 1\"/><limit lower=\"-1\" upper=\"1\" effort=\"1\" "
+            "velocity=\"1\"/></joint>\n";
+  }
+  return text + "</robot>\n";
+}
+
+std::string LoadTextError(const std::string& text, const std::string& label) {
+  try {
+    LoadUrdfChain(text, label);
+  } catch (const KinematicsError& e) {
+    return e.what();
+  }
+  ADD_FAILURE() << label << " loaded without an error";
+  return "";
+}
+
+TEST(UrdfTest, ALoopIsSaidInOurWordsWithTheLinkThatClosesIt) {
+  // Every link a child: urdfdom finds no root, and its sentence ("No root link found. The robot
+  // xml is not a valid tree.") names no link.
+  const std::string loop =
+      LoadTextError(RobotWithJoints({{"a", "b"}, {"b", "c"}, {"c", "a"}}), "loop.urdf");
+  ExpectMessage(loop, "loop.urdf",
+                {"the joints do not connect the links as a tree: joint 'j3' makes link 'a' a "
+                 "child of link 'c', which is below it already, closing the loop 'a' -> 'b' -> "
+                 "'c' -> 'a'"});
+  EXPECT_EQ(loop.find("root"), std::string::npos) << loop;
+  EXPECT_EQ(loop.find("valid tree"), std::string::npos) << loop;
+  // A loop below a root: the walk starts at the root, and the loop's own links are named.
+  const std::string below = LoadTextError(
+      RobotWithJoints({{"base", "a"}, {"a", "b"}, {"b", "c"}, {"c", "a"}}), "below.urdf");
+  ExpectMessage(below, "below.urdf",
+                {"joint 'j4' makes link 'a' a child of link 'c'",
+                 "closing the loop 'a' -> 'b' -> 'c' -> 'a'"});
+  EXPECT_EQ(below.find("'base' ->"), std::string::npos) << below;
+  // Two joints to one child without a loop is not a tree either, and said so.
+  ExpectMessage(
+      LoadTextError(RobotWithJoints({{"base", "a"}, {"base", "b"}, {"a", "c"}, {"b", "c"}}),
+                    "diamond.urdf"),
+      "diamond.urdf", {"link 'c' is the child of more than one joint"});
+  // A long chain is walked without recursion.
+  std::vector<std::pair<std::string, std::string>> chain;
+  for (int i = 0; i < 20000; ++i) {
+    // Appended, not "l" + std::to_string(...): GCC 12's false -Wrestrict (its bug 105329).
+    std::string parent(1, 'l'), child(1, 'l');
+    chain.push_back({parent.append(std::to_string(i)), child.append(std::to_string(i + 1))});
+  }
+  chain.push_back({"l20000", "l5"});
+  ExpectMessage(LoadTextError(RobotWithJoints(chain), "long.urdf"), "long.urdf",
+                {"joint 'j20001' makes link 'l5' a child of link 'l20000'"});
 }
 
 TEST(UrdfTest, ChainWithoutMovableJoint) {

@@ -152,6 +152,20 @@ TEST(GibbsTest, ProgramsItCannotSampleAreRefused) {
       "    Cube completely on bin\n");
   ASSERT_TRUE(varying);
   expect_refused(*varying, Gibbs(), "drew more numbers");
+  // Located at the count, the draw whose redraw changed how many numbers a run draws (not at
+  // the file's start).
+  try {
+    SampleScene(*varying, 0, 0, Gibbs());
+  } catch (const lang::ScenarioError& e) {
+    const lang::Diagnostic& d = e.diagnostic();
+    ASSERT_TRUE(d.has_span);
+    const lang::LineColumn at = varying->sources.CalcLineColumn(d.span.file, d.span.begin);
+    EXPECT_EQ(at.line, 3u);
+    EXPECT_EQ(at.column, 16u);
+    EXPECT_EQ(varying->sources.text(d.span.file).substr(d.span.begin, d.span.end - d.span.begin),
+              "DiscreteRange(1, 6)");
+    EXPECT_NE(d.message.find("when DiscreteRange at "), std::string::npos) << d.message;
+  }
 
   struct OnePoint : AttemptPoints {
     int dimension() const override { return 1; }

@@ -130,11 +130,40 @@ TEST(CompareTest, RunsThatAreNotOfTheSameScenesAreRefused) {
                                      "0.1 before and 0.7 after"),
             std::string::npos)
       << refused(run, moved);
+  // Runs of two programs, or of other scene options, are refused as wholes, naming both sides.
   std::vector<ReportRecord> other_spec = run, spec = run;
-  spec[0].spec = "aaaa";
-  other_spec[0].spec = "bbbb";
-  EXPECT_NE(refused(spec, other_spec).find("fingerprint is aaaa before and bbbb after"),
-            std::string::npos);
+  for (ReportRecord& r : spec) r.spec = "aaaa", r.scene_options = "";
+  for (ReportRecord& r : other_spec) r.spec = "bbbb", r.scene_options = "";
+  EXPECT_NE(refused(spec, other_spec)
+                .find("the runs are not of the same scenes: before.jsonl has the program "
+                      "fingerprint aaaa, scene options '', after.jsonl has the program "
+                      "fingerprint bbbb"),
+            std::string::npos)
+      << refused(spec, other_spec);
+  std::vector<ReportRecord> settled = spec;
+  for (ReportRecord& r : settled) r.scene_options = "--settle=3";
+  EXPECT_NE(refused(spec, settled).find("scene options '--settle=3'"), std::string::npos)
+      << refused(spec, settled);
+  std::vector<ReportRecord> mixed = spec;
+  mixed[1].spec = "bbbb";
+  EXPECT_NE(refused(mixed, spec).find("before.jsonl:2: the record has the program fingerprint "
+                                      "bbbb"),
+            std::string::npos)
+      << refused(mixed, spec);
+  // Without fingerprints, other objects are other scenes, not a vacuous match.
+  std::vector<ReportRecord> other_objects = run;
+  for (ReportRecord& r : other_objects) r.features = {{"d.x", 0.5}};
+  EXPECT_NE(refused(run, other_objects).find("not the same scene in both runs: before.jsonl has c"),
+            std::string::npos)
+      << refused(run, other_objects);
+  // A replay of the failures alone is refused with what to do instead.
+  std::vector<ReportRecord> replayed = {run[0]};
+  replayed[0].replay_of = "before.jsonl";
+  replayed[0].replay_failed_only = true;
+  EXPECT_NE(refused(run, replayed).find("after.jsonl:1: the run replays only the failures of "
+                                        "before.jsonl"),
+            std::string::npos)
+      << refused(run, replayed);
   // A scene twice, a record without a seed.
   EXPECT_NE(refused({run[0], run[0]}, run).find("before.jsonl:1: seed 1 index 0 is also on line 1"),
             std::string::npos)

@@ -3,6 +3,7 @@
 // that rejects half the attempts (exact in closed form), and Table-Cube's planted failures —
 // with the intervals covering in at least 17 of 20 seeds and the error beating i.i.d. sampling.
 #include "search/estimate.h"
+#include "search/intervals.h"
 
 #include <gtest/gtest.h>
 
@@ -54,8 +55,15 @@ TEST(CalcEstimateTest, WeightedSharesIntervalsAndTheBoundWithoutFailures) {
   const double p = 5.0 / 8;
   const double variance =
       10 * (1 * p * p + 1 * (1 - p) * (1 - p) + 4 * p * p + 16 * (1 - p) * (1 - p)) / 6400;
-  EXPECT_NEAR(e.outcomes[0].ci_high - e.outcomes[0].p, 1.959964 * std::sqrt(variance), 1e-6);
-  EXPECT_NEAR(e.outcomes[0].p - e.outcomes[0].ci_low, 1.959964 * std::sqrt(variance), 1e-6);
+  // The interval: exact binomial at the effective counts n* = p (1 - p) / variance, k* = p n*
+  // (intervals_test checks that interval against binomial sums).
+  const double n_star = p * (1 - p) / variance;
+  const RateInterval ci = CalcClopperPearsonInterval(p * n_star, n_star);
+  EXPECT_NEAR(e.outcomes[0].ci_low, ci.low, 1e-12);
+  EXPECT_NEAR(e.outcomes[0].ci_high, ci.high, 1e-12);
+  EXPECT_LT(e.outcomes[0].ci_low, p);
+  EXPECT_GT(e.outcomes[0].ci_high, p);
+  EXPECT_FALSE(e.iid);
   EXPECT_NEAR(e.outcomes[0].iid_episodes, p * (1 - p) / variance, 1e-9);
   EXPECT_DOUBLE_EQ(e.ess, 6400.0 / 220);
   EXPECT_FALSE(e.reliable) << "an ESS of 29 is no estimate";
@@ -63,6 +71,15 @@ TEST(CalcEstimateTest, WeightedSharesIntervalsAndTheBoundWithoutFailures) {
   const Estimate none = CalcEstimate(std::vector<WeightedOutcome>(100, {"success", 1, 1}));
   EXPECT_TRUE(none.outcomes.empty());
   EXPECT_NEAR(none.upper_bound, 1 - std::pow(0.05, 0.01), 1e-12);
+  EXPECT_TRUE(none.iid);
+  // A kind seen elsewhere only (an adaptation's) gets a row: no episode, [0, the bound].
+  const Estimate seen = CalcEstimate(std::vector<WeightedOutcome>(100, {"success", 1, 1}),
+                                     {"success", "no-path"});
+  ASSERT_EQ(seen.outcomes.size(), 1u);
+  EXPECT_EQ(seen.outcomes[0].outcome, "no-path");
+  EXPECT_EQ(seen.outcomes[0].episodes, 0);
+  EXPECT_EQ(seen.outcomes[0].ci_low, 0);
+  EXPECT_NEAR(seen.outcomes[0].ci_high, 1 - std::pow(0.05, 0.01), 1e-12);
   EXPECT_THROW(CalcEstimate({{"success", 0, 1}}), std::invalid_argument);
   EXPECT_THROW(CalcEstimate({}), std::invalid_argument);
 }

@@ -5,8 +5,11 @@
 
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
 #include <regex>
+#include <string>
+#include <vector>
 
 #include "geometry/random.h"
 
@@ -95,6 +98,108 @@ TEST(ReportPlotTest, TheSplitLineSitsAtItsThresholdOnTheAxis) {
   // Both axes are named.
   EXPECT_NE(svg.find("class=\"x-name\""), std::string::npos);
   EXPECT_NE(svg.find(">Cube.y (m)</text>"), std::string::npos) << "with its unit";
+}
+
+// The name on an SVG axis ("x-name" or "y-name"), without its unit.
+std::string AxisName(const std::string& svg, const std::string& axis) {
+  std::smatch name;
+  if (!std::regex_search(svg, name,
+                         std::regex("class=\"" + axis + "-name\"[^>]*>([^<]*)</text>"))) {
+    return "";
+  }
+  const std::string text = name[1];
+  return text.substr(0, text.rfind(" ("));
+}
+
+int Column(const FeatureTable& table, const std::string& name) {
+  const auto it = std::find(table.names.begin(), table.names.end(), name);
+  return it == table.names.end() ? -1 : static_cast<int>(it - table.names.begin());
+}
+
+// A cube c on a fixed table t, failing when x > 0.8 and y > 0.3: c-t.x is c.x less a constant,
+// as good a split as c.x, and plotting one against the other draws a diagonal line that hides
+// the corner where the failures are. The plot is c.x (or c-t.x) against c.y (or c-t.y).
+TEST(ReportPlotTest, TheSecondFeatureIsNotAFunctionOfTheFirst) {
+  geometry::Rng rng(11);
+  std::vector<ReportRecord> records;
+  for (int i = 0; i < 1500; ++i) {
+    ReportRecord r;
+    r.index = static_cast<uint64_t>(i);
+    const double x = rng.Uniform01(), y = rng.Uniform01();
+    r.features = {{"c.x", x}, {"c.y", y}, {"c.z", 0.8}, {"t.x", 0.4}, {"t.y", -0.25}};
+    r.outcome = x > 0.8 && y > 0.3 ? "no-path" : "success";
+    records.push_back(r);
+  }
+  const FeatureTable table = BuildFeatureTable(records);
+  std::vector<bool> failed;
+  for (const ReportRecord& r : records) failed.push_back(r.failed());
+  const std::vector<Split> splits = RankSplits(table, failed);
+  ASSERT_GE(splits.size(), 2u);
+  const std::string first = table.names[splits[0].feature];
+  ASSERT_TRUE(first == "c.x" || first == "c-t.x") << first;
+  // The next ranked split is the same feature shifted: the old plot's choice.
+  EXPECT_TRUE(AreRedundant(table, Column(table, "c.x"), Column(table, "c-t.x")));
+  const int second = ChooseSecondPlotFeature(table, failed, splits);
+  ASSERT_GE(second, 0);
+  EXPECT_TRUE(table.names[second] == "c.y" || table.names[second] == "c-t.y")
+      << table.names[second];
+
+  // The report's picture says so on its axes.
+  std::string svg;
+  const std::string md = FormatFailureReport(records, {"r.jsonl", "out/r.svg"}, &svg);
+  const std::string x_name = AxisName(svg, "x"), y_name = AxisName(svg, "y");
+  EXPECT_TRUE(x_name == "c.x" || x_name == "c-t.x") << x_name;
+  EXPECT_TRUE(y_name == "c.y" || y_name == "c-t.y") << y_name;
+  EXPECT_NE(svg.find(">" + x_name + " (m)</text>"), std::string::npos) << "with its unit";
+  EXPECT_NE(md.find("![" + y_name + " against " + x_name + "](r.svg)"), std::string::npos) << md;
+  // The strongest split is the horizontal axis's, so its line is drawn.
+  EXPECT_NE(svg.find("class=\"split\""), std::string::npos);
+}
+
+// One cause (x > 0.8), nothing else: the plot still has a second axis, and not c-t.x or the
+// distance to the fixed table (a function of x when y barely varies).
+TEST(ReportPlotTest, AOneFeatureFailureIsPlottedAgainstAnotherFeature) {
+  geometry::Rng rng(12);
+  FeatureTable table{{"c.x", "c-t.x", "dist(c, t)", "c.y", "u[0]"}, {}};
+  std::vector<bool> failed;
+  for (int i = 0; i < 800; ++i) {
+    const double x = rng.Uniform01(), y = rng.Uniform(-0.01, 0.01);
+    table.rows.push_back({x, x - 0.4, std::hypot(x + 1, y), y, rng.Uniform01()});
+    failed.push_back(x > 0.8);
+  }
+  const std::vector<Split> splits = RankSplits(table, failed);
+  ASSERT_FALSE(splits.empty());
+  ASSERT_EQ(splits[0].feature, 0);
+  const int second = ChooseSecondPlotFeature(table, failed, splits);
+  EXPECT_TRUE(second == 3 || second == 4) << (second >= 0 ? table.names[second] : "none");
+  // Nothing to plot against: every feature is the first one in disguise.
+  const FeatureTable alike{{"c.x", "c-t.x"}, {{0.1, -0.3}, {0.5, 0.1}, {0.9, 0.5}, {0.2, -0.2}}};
+  const std::vector<bool> alike_failed = {false, false, true, false};
+  EXPECT_EQ(ChooseSecondPlotFeature(alike, alike_failed, {Split{0, 0.7}}), -1);
+  EXPECT_EQ(ChooseSecondPlotFeature(alike, alike_failed, {}), -1);
+}
+
+TEST(ReportPlotTest, RedundantFeaturesAreFunctionsOfEachOtherOrNearlySo) {
+  geometry::Rng rng(13);
+  FeatureTable table{{"x", "affine", "noisy", "square", "distance", "other", "coarse"}, {}};
+  for (int i = 0; i < 500; ++i) {
+    const double x = rng.Uniform(-1, 1), other = rng.Uniform(-1, 1);
+    table.rows.push_back({x, 3 - 2 * x, x + rng.Uniform(-0.05, 0.05), x * x,
+                          std::hypot(x - 0.2, 0.05), other, std::floor(4 * other)});
+  }
+  EXPECT_TRUE(AreRedundant(table, 0, 0));
+  EXPECT_TRUE(AreRedundant(table, 0, 1)) << "an affine function: r = -1";
+  EXPECT_TRUE(AreRedundant(table, 0, 2)) << "|r| > 0.99";
+  EXPECT_TRUE(AreRedundant(table, 0, 3)) << "x² is a function of x, though r is near 0";
+  EXPECT_TRUE(AreRedundant(table, 4, 0)) << "either way round";
+  EXPECT_FALSE(AreRedundant(table, 0, 5));
+  EXPECT_FALSE(AreRedundant(table, 5, 0));
+  EXPECT_FALSE(AreRedundant(table, 0, 6)) << "few values, each with every x";
+  EXPECT_FALSE(AreRedundant(table, 6, 0));
+  EXPECT_TRUE(AreRedundant(table, 5, 6)) << "coarse is floor(4 · other)";
+  // Too few points in common, or a constant: nothing to draw.
+  FeatureTable sparse{{"a", "b"}, {{0.1, NAN}, {0.2, 0.5}, {NAN, 0.7}, {0.4, 0.9}}};
+  EXPECT_TRUE(AreRedundant(sparse, 0, 1));
 }
 
 }  // namespace

@@ -133,6 +133,41 @@ TEST(MeshTest, BadFilesGetMessagesInOurWords) {
   EXPECT_FALSE(out_of_range.empty());
 }
 
+TEST(MeshTest, AVertexThatIsNotANumberIsNamed) {
+  // Joining identical vertices merged the NaN vertex with another one, so the file was said to
+  // have "only triangles of zero area".
+  const std::string obj =
+      "# a tetrahedron\nv 0 0 0\nv 1 0 0\n\nv nan 1 0\nv 0 0 1\nf 1 2 3\nf 1 2 4\nf 1 3 4\n"
+      "f 2 3 4\n";
+  EXPECT_EQ(LoadError(obj, "tet.obj"),
+            "has a vertex that is not a number: vertex 3 (counting from 1, as the file's faces "
+            "do), line 5: 'v nan 1 0'");
+  const std::string infinite = "v 0 0 0\nv 1 0 0\nv 0 1 0\nv 0 0 inf\nf 1 2 3\nf 1 2 4\n";
+  EXPECT_EQ(LoadError(infinite, "tet.obj"),
+            "has a vertex that is not a finite number: vertex 4 (counting from 1, as the file's "
+            "faces do), line 4: 'v 0 0 inf'");
+  const std::string stl =
+      "solid t\n"
+      " facet normal 0 0 1\n  outer loop\n   vertex 0 0 0\n   vertex 1 0 0\n   vertex 0 1 0\n"
+      "  endloop\n endfacet\n"
+      " facet normal 0 0 1\n  outer loop\n   vertex 0 0 0\n   vertex NaN 1 0\n   vertex 0 0 2\n"
+      "  endloop\n endfacet\n"
+      "endsolid t\n";
+  EXPECT_EQ(LoadError(stl, "t.stl"),
+            "has a vertex that is not a number: vertex 5 (counting from 1: corner 2 of facet 2), "
+            "(nan, 1, 0)");
+  // A binary STL: an 80-byte header, a count, and 50 bytes a facet.
+  std::string binary(80, ' ');
+  const uint32_t facets = 1;
+  binary.append(reinterpret_cast<const char*>(&facets), 4);
+  const float facet[12] = {0, 0, 1, 0, 0, 0, 1, 0, 0, 0, 1, std::nanf("")};
+  binary.append(reinterpret_cast<const char*>(facet), sizeof facet);
+  binary.append(2, '\0');
+  EXPECT_EQ(LoadError(binary, "b.stl"),
+            "has a vertex that is not a number: vertex 3 (counting from 1: corner 3 of facet 1), "
+            "(0, 1, nan)");
+}
+
 // PLY headers are checked before assimp reads the file (its reader loops forever on some
 // malformed ones): each malformation is refused, naming the line.
 TEST(MeshTest, MalformedPlyHeadersAreRefusedBeforeReading) {

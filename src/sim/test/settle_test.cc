@@ -1,7 +1,8 @@
 // --settle: an object drawn in the air lands on its support and the scene says how long that
 // took; what must hold at rest (`require settled`, the workspace) rejects the scenes that
 // break it, naming the object; the settled scene, exported to MJCF and simulated by MuJoCo
-// directly for 1 s, stays put; settling is deterministic.
+// directly for 1 s, stays put; settling is deterministic; a time too short to find rest is
+// refused, and a free body without contacts is a located error.
 #include "sim/settle.h"
 
 #include <gtest/gtest.h>
@@ -127,13 +128,50 @@ TEST(SettleTest, ASceneNotAtRestInTimeIsUnsettled) {
   const auto program = Compile(std::string(kTable) + "c = Cube at V3D(0, 0, 2.5)\n");
   lang::Scene scene = sampling::SampleScene(*program, 1, 0).scene;
   SettleOptions short_time;
-  short_time.duration_s = 0.2;  // still falling
+  short_time.duration_s = kMinSettleDuration_s;  // still falling: 1.2 m in the last 0.5 s
   const std::optional<lang::Rejection> r = SettleAndCheck(scene, short_time);
   ASSERT_TRUE(r.has_value());
   EXPECT_EQ(r->culprit, "c not at rest");
-  EXPECT_NE(r->detail.find("c was still moving at "), std::string::npos) << r->detail;
-  for (const double bad : {0.0, -1.0, std::nan(""), HUGE_VAL}) {
+  EXPECT_NE(r->detail.find("c was still moving after 0.50 s: it moved 1.2"), std::string::npos)
+      << r->detail;
+  EXPECT_NE(r->detail.find(" m and turned 0.0° in the last 0.5 s (at rest: under 1.0 cm and 5.7°)"),
+            std::string::npos)
+      << r->detail;
+  for (const double bad : {0.0, -1.0, std::nan(""), HUGE_VAL, 0.4}) {
     EXPECT_THROW(MakeSettleTest({bad}), std::invalid_argument);
+  }
+}
+
+// Settling judges rest by where the bodies were 0.5 s before, so nothing is at rest sooner: a
+// time below that is refused, naming the least; a cube already at rest settles within it.
+TEST(SettleTest, RestIsDecidedWithinTheLeastTime) {
+  try {
+    CheckSettleOptions({0.4});
+    ADD_FAILURE() << "0.4 s accepted";
+  } catch (const std::invalid_argument& error) {
+    EXPECT_NE(std::string(error.what()).find("at least 0.5 s, not 0.4"), std::string::npos)
+        << error.what();
+  }
+  const auto program = Compile(std::string(kTable) + "c = Cube completely on t\n");
+  lang::Scene scene = sampling::SampleScene(*program, 1, 0).scene;
+  EXPECT_FALSE(SettleAndCheck(scene, {kMinSettleDuration_s}).has_value());
+  ASSERT_TRUE(scene.settled_s.has_value());
+  EXPECT_NEAR(*scene.settled_s, kMinSettleDuration_s, 1e-9);
+}
+
+// An object with a mass and allowCollisions: True would fall through the table and never come
+// to rest ("still moving at 29.43 m/s"): a located error instead.
+TEST(SettleTest, AFreeBodyWithoutContactsIsALocatedError) {
+  const auto program =
+      Compile(std::string(kTable) + "c = Cube completely on t, with allowCollisions True\n");
+  lang::Scene scene = sampling::SampleScene(*program, 1, 0).scene;
+  try {
+    SettleAndCheck(scene, {});
+    ADD_FAILURE() << "no error";
+  } catch (const lang::ScenarioError& error) {
+    EXPECT_EQ(error.diagnostic().id, "physics-without-contacts");
+    EXPECT_EQ(error.diagnostic().span.begin, scene.objects[1].span.begin);
+    EXPECT_NE(error.diagnostic().message.find("--settle"), std::string::npos);
   }
 }
 

@@ -1,8 +1,9 @@
 // The physics check of --stable: an object drawn in the air falls and is named, an overhanging
 // box tips off its support, objects resting on their supports stay put (a box, an upright
 // cylinder, the Table-Cube cube), a scene without free bodies is not simulated, bad options are
-// refused; and scenes it accepts stay put when their MJCF export is simulated for 2 s by MuJoCo
-// directly, without this stage's code.
+// refused (a time too short to find rest among them), a body still moving at the end says how
+// fast, a free body without contacts is a located error; and scenes it accepts stay put when
+// their MJCF export is simulated for 2 s by MuJoCo directly, without this stage's code.
 #include "sim/stability.h"
 
 #include <gtest/gtest.h>
@@ -109,6 +110,75 @@ TEST(StabilityTest, BadOptionsAreRefused) {
     options.max_turn_rad = bad;
     EXPECT_THROW(CheckStabilityOptions(options), std::invalid_argument);
   }
+  for (const double too_short : {0.1, 0.199}) {
+    EXPECT_THROW(MakeStabilityTest({too_short}), std::invalid_argument) << too_short;
+  }
+}
+
+// Below kMinStableDuration_s a body cannot have been still for 0.1 s from 0.1 s on, so every
+// scene would be "still moving at 0.000 m/s": such times are refused, naming the least.
+TEST(StabilityTest, RestIsDecidedWithinTheLeastTime) {
+  StabilityOptions options;
+  options.duration_s = 0.1;
+  try {
+    CheckStabilityOptions(options);
+    ADD_FAILURE() << "0.1 s accepted";
+  } catch (const std::invalid_argument& error) {
+    EXPECT_NE(std::string(error.what()).find("at least 0.2 s, not 0.1"), std::string::npos)
+        << error.what();
+  }
+  // A cube at rest on the table is found at rest within the least time (rounded up to whole
+  // steps), at MuJoCo's 2 ms steps and at steps that do not divide it.
+  const lang::Scene scene = Sample(std::string(kTable) + "c = Cube completely on t\n");
+  for (const double step_s : {0.002, 0.004, 0.003}) {
+    options.duration_s = kMinStableDuration_s;
+    options.timestep_s = step_s;
+    const StabilityReport report =
+        SimulateUnderGravity(exporting::MakeExportScene(scene, "t"), options);
+    EXPECT_TRUE(report.at_rest) << step_s;
+    EXPECT_LT(report.simulated_s, kMinStableDuration_s + step_s) << step_s;
+  }
+  options = {};
+  options.duration_s = kMinStableDuration_s;
+  EXPECT_FALSE(CheckStable(scene, options).has_value());
+}
+
+// When the time runs out with a body within the tolerances, the detail says how it was moving:
+// a speed above the rest speed, never "moving at 0.000 m/s".
+TEST(StabilityTest, ABodyStillMovingWhenTimeRunsOutSaysHowFast) {
+  const lang::Scene scene = Sample(std::string(kTable) + "c = Cube at V3D(0, 0, 2.5)\n");
+  StabilityOptions options;
+  options.duration_s = 0.2;
+  options.max_move_m = 10;  // falling 20 cm is within it
+  const std::optional<lang::Rejection> r = CheckStable(scene, options);
+  ASSERT_TRUE(r.has_value());
+  EXPECT_NE(r->detail.find("c was still moving at 1.96"), std::string::npos) << r->detail;
+  EXPECT_NE(r->detail.find("after 0.20 s"), std::string::npos) << r->detail;
+}
+
+// An object with a mass and allowCollisions: True has no contacts in the physics model and
+// falls through the table: a located error, not a rejection that says only "fell 1.1 cm".
+TEST(StabilityTest, AFreeBodyWithoutContactsIsALocatedError) {
+  const lang::Scene scene =
+      Sample(std::string(kTable) + "c = Cube completely on t, with allowCollisions True\n");
+  try {
+    CheckStable(scene, {});
+    ADD_FAILURE() << "no error";
+  } catch (const lang::ScenarioError& error) {
+    EXPECT_EQ(error.diagnostic().id, "physics-without-contacts");
+    EXPECT_TRUE(lang::IsKnownDiagnosticId(error.diagnostic().id));
+    EXPECT_EQ(error.diagnostic().span.begin, scene.objects[1].span.begin);
+    EXPECT_NE(error.diagnostic().message.find("c has a mass and allowCollisions: True"),
+              std::string::npos)
+        << error.diagnostic().message;
+    EXPECT_NE(error.diagnostic().message.find("--stable"), std::string::npos);
+  }
+  // Without a mass it is static: nothing to simulate, no error.
+  EXPECT_FALSE(CheckStable(Sample(std::string(kTable) +
+                                  "c = Cube completely on t, with allowCollisions True, "
+                                  "with mass 0\n"),
+                           {})
+                   .has_value());
 }
 
 // Independently of SimulateUnderGravity: each scene the check accepts is exported to MJCF,
