@@ -194,8 +194,10 @@ def estimate(scenario: Scenario, controller, budget: int, seed: int = 0,
 
     ``controller`` is a function of a Scene as for :func:`search` (it runs on this thread), or
     a built-in controller's name (run on ``threads`` threads). Returns a dict: ``"episodes"``
-    (weighted), ``"ess"``, ``"reliable"`` (False when the weights degenerate: then do not use
-    the numbers), ``"estimates"`` (per failure outcome: ``"p"``, ``"ci95"``, ``"ess"``,
+    (weighted), ``"ess"``, ``"reliable"`` (False when the weights degenerate or the proposal
+    misses where the controller nearly fails: then do not use the numbers, and
+    ``"unreliable_because"`` says why), ``"estimates"`` (per failure outcome: ``"p"``,
+    ``"ci95"``, ``"ess"``,
     ``"failing_episodes"``, ``"iid_episodes_for_same_precision"``), ``"upper_bound_95"`` when
     nothing failed, and ``"records"`` (as ``prs estimate -o`` writes them). ValueError for a
     budget under 200 or an unknown controller name.

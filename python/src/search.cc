@@ -221,6 +221,7 @@ py::dict RunPythonEstimate(const ProgramPtr& program, const sampling::SampleOpti
   out["episodes"] = e.episodes;
   out["ess"] = e.ess;
   out["reliable"] = e.reliable;
+  if (!e.reliable) out["unreliable_because"] = search::DescribeUnreliable(e);
   py::dict estimates;
   for (const search::OutcomeEstimate& o : e.outcomes) {
     py::dict d;

@@ -89,3 +89,41 @@ def test_a_replay_keeps_the_law_of_its_records(prs_binary, tmp_path):
     r = run_prs(prs_binary, "estimate", "--from", str(again_searched))
     assert r.returncode == 1
     assert "records of a search" in r.stderr
+
+
+BAND = """
+from probrobscene.serve import serve
+
+W = 0.00175  # |x - y| < W: 2 W / 1.75 = 0.2 % of the cube's positions on the table
+
+def controller(scene):
+    cube = next(o for o in scene["objects"] if o["class"] == "Cube")
+    x, y = cube["position"][0], cube["position"][1]
+    score = abs(x - y) - W
+    return {"outcome": "band" if score <= 0 else "success", "score": score}
+
+serve(controller)
+"""
+
+
+def test_an_estimate_covers_a_thin_band_or_says_it_cannot(prs_binary, tmp_path):
+    # A thin band along a diagonal (issue 43): prs estimate either gives an interval that holds
+    # the truth, 0.2 %, or says it is unreliable, and --from says the same from the records.
+    cube, _ = write_files(tmp_path)
+    script = tmp_path / "band.py"
+    script.write_text(BAND)
+    controller = ["--exec", f"{sys.executable} {script}", "--persistent"]
+    for seed in ("1", "2", "3"):
+        out = tmp_path / f"band{seed}.jsonl"
+        r = run_prs(prs_binary, "estimate", str(cube), "-I", str(EXAMPLES), *controller,
+                    "--budget", "2000", "-s", seed, "-o", str(out), "-q", "--json")
+        assert r.returncode == 0, r.stderr
+        result = json.loads(r.stdout)
+        if result["reliable"]:
+            low, high = result["estimates"]["band"]["ci95"]
+            assert low <= 0.002 <= high, (seed, result)
+        else:
+            assert "misses where the controller nearly fails" in result["unreliable_because"] \
+                or "degenerate" in result["unreliable_because"], result
+        again = run_prs(prs_binary, "estimate", "--from", str(out), "--json")
+        assert json.loads(again.stdout) == result

@@ -5,6 +5,7 @@
 #include <fmt/format.h>
 
 #include <algorithm>
+#include <cmath>
 #include <iostream>
 #include <memory>
 #include <nlohmann/json.hpp>
@@ -63,6 +64,8 @@ std::string FormatEstimateJson(const search::Estimate& e) {
   out["episodes"] = e.episodes;
   out["ess"] = e.ess;
   out["reliable"] = e.reliable;
+  if (!std::isnan(e.uncovered_share)) out["uncovered_share"] = e.uncovered_share;
+  if (!e.reliable) out["unreliable_because"] = search::DescribeUnreliable(e);
   out["estimates"] = nlohmann::ordered_json::object();
   if (e.reliable) {
     for (const search::OutcomeEstimate& o : e.outcomes) {
@@ -85,10 +88,7 @@ int PrintEstimate(const search::Estimate& e, const EstimateArgs& args) {
     if (!e.outcomes.empty()) std::cout << FormatEstimateTable(e) << std::flush;
   }
   if (!e.reliable) {
-    PrintWarning(fmt::format(
-        "the weights degenerate (effective sample size {:.0f} of {} weighted episodes): no "
-        "estimate is given, as its interval could not be trusted; raise --budget",
-        e.ess, e.episodes));
+    PrintWarning(search::DescribeUnreliable(e));
   } else if (e.outcomes.empty() && !args.quiet) {
     PrintNote(fmt::format(
         "no failure in {}: the probability of failing is below {} (a 95 % "

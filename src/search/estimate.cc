@@ -243,6 +243,27 @@ std::vector<harness::EpisodeRecord> RunAt(const lang::CompiledProgram& program,
   return std::move(summary.records);
 }
 
+// Estimate::uncovered_share: the draws with the lowest scores, as many as make
+// kNearFailureMass of the weight (of the program's law), and the weighted share of them drawn
+// where the normals give under half the proposal's density. NaN when a record has no score or
+// no kernel share.
+double CalcUncoveredShare(const std::vector<WeightedOutcome>& records, double total_weight) {
+  std::vector<const WeightedOutcome*> by_score;
+  for (const WeightedOutcome& r : records) {
+    if (std::isnan(r.score) || std::isnan(r.kernel_share)) return NAN;
+    by_score.push_back(&r);
+  }
+  std::stable_sort(by_score.begin(), by_score.end(),
+                   [](const auto* a, const auto* b) { return a->score < b->score; });
+  double near = 0, uncovered = 0;
+  for (const WeightedOutcome* r : by_score) {
+    if (near >= kNearFailureMass * total_weight && r->score > 0) break;
+    near += r->weight;
+    if (r->kernel_share < 0.5) uncovered += r->weight;
+  }
+  return near > 0 ? uncovered / near : NAN;
+}
+
 }  // namespace
 
 double MixtureProposal::CalcDensity(const double* u) const {
@@ -262,6 +283,12 @@ double MixtureProposal::CalcDensity(const double* u) const {
     gaussian /= double(centres.size());
   }
   return uniform_share + (1 - uniform_share) * gaussian;
+}
+
+double MixtureProposal::CalcKernelShare(const double* u) const {
+  if (uniform_share >= 1) return 0;
+  const double density = CalcDensity(u);
+  return (density - uniform_share) / density;
 }
 
 bool MixturePoints::Point(uint64_t seed, uint64_t index, int64_t attempt, double* u) const {
@@ -287,6 +314,23 @@ bool MixturePoints::Point(uint64_t seed, uint64_t index, int64_t attempt, double
   return true;
 }
 
+std::string DescribeUnreliable(const Estimate& e) {
+  if (e.reliable) return "";
+  if (e.uncovered_share > kMaxUncoveredShare) {
+    return fmt::format(
+        "the proposal misses where the controller nearly fails: {:.0f} % of the episodes "
+        "nearest to failing ({:.0f} % of the scenes, by score) were drawn where only its uniform "
+        "share reaches, so the failure set may extend where it drew too little to tell; no "
+        "estimate is given, as its interval could not be trusted (docs/search.md, \"How "
+        "good\"); raise --budget",
+        100 * e.uncovered_share, 100 * kNearFailureMass);
+  }
+  return fmt::format(
+      "the weights degenerate (effective sample size {:.0f} of {} weighted episodes): no "
+      "estimate is given, as its interval could not be trusted; raise --budget",
+      e.ess, e.episodes);
+}
+
 Estimate CalcEstimate(const std::vector<WeightedOutcome>& records,
                       const std::vector<std::string>& also_seen) {
   if (records.empty()) throw std::invalid_argument("no records to estimate from");
@@ -309,6 +353,8 @@ Estimate CalcEstimate(const std::vector<WeightedOutcome>& records,
   }
   estimate.ess = total * total / squares;
   estimate.reliable = estimate.ess >= kMinEss && estimate.ess >= 0.05 * double(estimate.episodes);
+  estimate.uncovered_share = CalcUncoveredShare(records, total);
+  if (estimate.uncovered_share > kMaxUncoveredShare) estimate.reliable = false;
   const bool normalised =
       std::any_of(records.begin(), records.end(), [](const auto& r) { return r.normalised; });
   const double n = double(records.size());
@@ -366,8 +412,9 @@ WeightedRecords SelectWeightedRecords(const std::vector<ReportRecord>& records,
     seen.insert(record.outcome);
     const RecordLaw law = DescribeLaw(record);
     if (law == RecordLaw::kImportance) {
-      weighted.records.push_back(
-          {record.outcome, record.weight, record.uniform_share, record.normalised});
+      weighted.records.push_back({record.outcome, record.weight, record.uniform_share,
+                                  record.normalised, record.score.value_or(NAN),
+                                  record.kernel_share});
     } else if (law == RecordLaw::kIid) {
       plain.records.push_back({record.outcome});
     } else if (law != RecordLaw::kSearch) {
@@ -522,14 +569,19 @@ EstimateSummary RunEstimate(const lang::CompiledProgram& program,
       const double* u = r.coordinates.data();
       const double density =
           (n1 * (n1 > 0 ? explore.CalcDensity(u) : 0) + n2 * proposal.CalcDensity(u)) / (n1 + n2);
-      const WeightedOutcome w{r.result.outcome, 1 / density, proposal.uniform_share,
-                              rejections > 0};
+      const WeightedOutcome w{r.result.outcome,
+                              1 / density,
+                              proposal.uniform_share,
+                              rejections > 0,
+                              r.result.score.value_or(NAN),
+                              proposal.CalcKernelShare(u)};
       weighted.push_back(w);
       r.search = {{"strategy", "importance"},
                   {"phase", phase == &explored ? "explore" : "sample"},
                   {"weight", w.weight},
                   {"uniform_share", w.uniform_share},
-                  {"normalised", w.normalised}};
+                  {"normalised", w.normalised},
+                  {"kernel_share", w.kernel_share}};
       if (options.on_record) options.on_record(r);
       summary.records.push_back(std::move(r));
     }

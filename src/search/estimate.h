@@ -4,6 +4,7 @@
 // uniform law, and self-normalised estimates with confidence intervals.
 #pragma once
 
+#include <cmath>
 #include <cstdint>
 #include <functional>
 #include <optional>
@@ -32,6 +33,8 @@ struct MixtureProposal {
 
   /// The density at `u` (dimension() coordinates in [0, 1)).
   double CalcDensity(const double* u) const;
+  /// The share of that density the normals give at `u` (0 where only the uniform share draws).
+  double CalcKernelShare(const double* u) const;
   int dimension() const { return static_cast<int>(mean.size()); }
 };
 
@@ -67,9 +70,15 @@ struct Estimate {
   double ess = 0;        // effective sample size, (sum w)^2 / sum w^2
   /// True when every record weighs 1 (i.i.d. episodes, not weighted ones).
   bool iid = true;
-  /// False when the weights degenerate (ESS under kMinEss or under 5 % of the episodes): the
+  /// False when the weights degenerate (ESS under kMinEss or under 5 % of the episodes), or
+  /// when the proposal's normals miss much of where the controller nearly fails (below): the
   /// numbers are then not to be trusted, and `prs estimate` says so instead of printing them.
   bool reliable = true;
+  /// Of the episodes nearest to failing (the lowest scores, kNearFailureMass of the program's
+  /// law), the weighted share drawn where the proposal's normals give under half the density:
+  /// a failure set the normals miss in part shows up there first, where only the uniform share
+  /// draws. Above kMaxUncoveredShare the estimate is unreliable. NaN without scores.
+  double uncovered_share = NAN;
   /// Failures seen, largest p first; then the failure kinds seen only elsewhere (an
   /// adaptation's episodes) with no episode here, with p = 0 and [0, bound].
   std::vector<OutcomeEstimate> outcomes;
@@ -80,6 +89,10 @@ struct Estimate {
 
 /// The fewest effective episodes an estimate is reported for.
 inline constexpr double kMinEss = 30;
+/// The near-failures the coverage check looks at: the lowest scores, this much of the law.
+inline constexpr double kNearFailureMass = 0.01;
+/// The most of the near-failures the proposal's normals may leave to the uniform share.
+inline constexpr double kMaxUncoveredShare = 0.3;
 
 /// A record as the estimate reads it.
 struct WeightedOutcome {
@@ -89,7 +102,14 @@ struct WeightedOutcome {
   /// True when the accepted set may be smaller than the cube (the run saw rejections): then
   /// the estimate is self-normalised, sum w 1F / sum w; else the plain mean of w 1F.
   bool normalised = true;
+  /// The controller's score (NaN when it reports none) and the share of the proposal's
+  /// density its normals gave at the draw (MixtureProposal::CalcKernelShare; NaN unknown).
+  double score = NAN, kernel_share = NAN;
 };
+
+/// Why `estimate` is unreliable, in one sentence that ends in what to do ("" when reliable):
+/// the weights degenerate, or the proposal misses much of where the controller nearly fails.
+std::string DescribeUnreliable(const Estimate& estimate);
 
 /// The estimate of weighted outcomes (throws std::invalid_argument when there are none or a
 /// weight is not positive and finite). Each name of `also_seen` that is neither "success" nor

@@ -179,11 +179,9 @@ std::string FormatImportanceEstimate(const std::vector<ReportRecord>& records,
   const Estimate e = CalcEstimate(weighted.records, weighted.outcomes_seen);
   std::string md = "## How often it fails (importance-sampling estimate)\n\n";
   if (!e.reliable) {
-    return md + fmt::format(
-                    "The weights degenerate (effective sample size {:.0f} of {} weighted "
-                    "episodes): no estimate is given, as its interval could not be trusted; run "
-                    "`prs estimate` with a larger --budget.\n\n",
-                    e.ess, e.episodes);
+    std::string why = DescribeUnreliable(e);
+    why[0] = char(std::toupper(static_cast<unsigned char>(why[0])));
+    return md + why + " (`prs estimate`).\n\n";
   }
   if (e.outcomes.empty()) {
     return md + fmt::format(
@@ -317,6 +315,9 @@ std::vector<ReportRecord> ParseReportRecords(const std::vector<std::string>& lin
         r.weight = number("weight");
         r.uniform_share = number("uniform_share");
         r.normalised = !search.contains("normalised") || search["normalised"] != false;
+        if (search.contains("kernel_share") && search["kernel_share"].is_number()) {
+          r.kernel_share = search["kernel_share"].get<double>();
+        }
         if (!(r.weight > 0) || !(r.uniform_share > 0) || !std::isfinite(r.weight)) {
           throw std::runtime_error(where +
                                    ": an importance-sampling record without a positive "

@@ -5,6 +5,7 @@
 // failure modes (failure-rich leaves of a depth-3 tree) with a representative episode each.
 #pragma once
 
+#include <cmath>
 #include <cstdint>
 #include <optional>
 #include <string>
@@ -37,6 +38,7 @@ struct ReportRecord {
   /// program's law, the proposal's uniform share, and whether the estimate is self-normalised.
   double weight = 1, uniform_share = 1;
   bool normalised = true;
+  double kernel_share = NAN;  // of an importance record's proposal density, when recorded
   std::string search_json;  // the "search" object as written (a replay copies it), else ""
   /// Set for a replay's records (`prs test --replay R`): R, and whether only R's failures
   /// were replayed.
