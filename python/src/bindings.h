@@ -74,6 +74,10 @@ struct LoadOptions {
   std::string sampler = "rejection";  // --sampler: "rejection" or "gibbs"
 };
 
+/// scenario.cc: the words of prs's options that `load` sets and that shape the scenes
+/// (--naive, --sampler, --stable[=T] with its tolerances, --settle=T), as prs takes them.
+std::vector<std::string> MakeSceneOptionWords(const LoadOptions& load);
+
 /// scenario.cc: compiles `text` (or the file `path` when `text` is null), raising
 /// ScenarioError for the first error, with every error rendered in its text.
 std::shared_ptr<lang::CompiledProgram> CompileProgram(const std::string& path,
@@ -94,7 +98,7 @@ py::list ListCoordinates(const lang::CompiledProgram& program,
 py::list RunPythonSearch(const ProgramPtr& program, const sampling::SampleOptions& sample,
                          const py::function& controller, int64_t budget,
                          const std::string& strategy, uint64_t seed,
-                         std::optional<int64_t> batch);
+                         std::optional<int64_t> batch, const std::string& scene_options);
 /// search.cc: what a Python controller returned, as an episode result: an outcome name, or a
 /// dict with "outcome" and optionally "detail", "score" and anything else (the extra);
 /// "bad-answer" for anything else. Needs the GIL.
@@ -107,7 +111,7 @@ void BindReplay(py::module_& m);
 /// name (on `threads` threads, without the GIL): the estimate and the records as a dict.
 py::dict RunPythonEstimate(const ProgramPtr& program, const sampling::SampleOptions& sample,
                            const py::object& controller, int64_t budget, uint64_t seed,
-                           int threads);
+                           int threads, const std::string& scene_options);
 /// search.cc: report_markdown(lines, title).
 void BindSearch(py::module_& m);
 /// campaign.cc: campaign_init, campaign_run_shard, campaign_status, campaign_merge.

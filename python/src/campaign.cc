@@ -71,22 +71,8 @@ std::string Init(const std::string& dir, const std::string& path, const LoadOpti
   for (const auto& [name, value] : load.params) {
     spec.scenario_words.insert(spec.scenario_words.end(), {"-p", name + "=" + value});
   }
-  if (load.naive) spec.scenario_words.push_back("--naive");
-  if (load.sampler != "rejection") {
-    spec.scenario_words.insert(spec.scenario_words.end(), {"--sampler", load.sampler});
-  }
-  if (load.stable_s > 0) {
-    spec.scenario_words.push_back(fmt::format("--stable={}", load.stable_s));
-    if (load.stable_move_m != LoadOptions{}.stable_move_m) {
-      spec.scenario_words.insert(spec.scenario_words.end(),
-                                 {"--stable-move", fmt::format("{}", load.stable_move_m)});
-    }
-    if (load.stable_turn_deg != LoadOptions{}.stable_turn_deg) {
-      spec.scenario_words.insert(spec.scenario_words.end(),
-                                 {"--stable-turn", fmt::format("{}", load.stable_turn_deg)});
-    }
-  }
-  if (load.settle_s > 0) spec.scenario_words.push_back(fmt::format("--settle={}", load.settle_s));
+  const std::vector<std::string> scene_words = MakeSceneOptionWords(load);
+  spec.scenario_words.insert(spec.scenario_words.end(), scene_words.begin(), scene_words.end());
   spec.params = load.params;
   spec.naive = load.naive;
   spec.sampler = load.sampler;

@@ -3,6 +3,8 @@
 // and the properties seen to vary, as `prs check` prints them).
 #include <pybind11/stl.h>
 
+#include <fmt/format.h>
+
 #include <algorithm>
 #include <chrono>
 #include <thread>
@@ -10,6 +12,7 @@
 #include "analysis/property_variation.h"
 #include "analysis/scenario_outline.h"
 #include "bindings.h"
+#include "harness/harness.h"
 #include "sampling/batch.h"
 #include "sampling/gibbs.h"
 #include "sampling/partial_rejection.h"
@@ -36,12 +39,13 @@ struct PythonErrorPending {};
 class Scenario {
  public:
   Scenario(ProgramPtr program, std::string path, sampling::SampleOptions options,
-           double stable_s = 0, double settle_s = 0)
+           double stable_s = 0, double settle_s = 0, std::string scene_options = "")
       : program_(std::move(program)),
         path_(std::move(path)),
         options_(options),
         stable_s_(stable_s),
         settle_s_(settle_s),
+        scene_options_(std::move(scene_options)),
         sampler_(*program_, options_) {}
 
   ScenePtr Sample(const py::object& seed_arg, const py::object& index_arg) {
@@ -86,13 +90,13 @@ class Scenario {
   py::list Search(const py::function& controller, int64_t budget, const std::string& strategy,
                   const py::object& seed_arg, std::optional<int64_t> batch) {
     return RunPythonSearch(program_, options_, controller, budget, strategy,
-                           ToSceneNumber(seed_arg, "seed"), batch);
+                           ToSceneNumber(seed_arg, "seed"), batch, scene_options_);
   }
 
   py::dict Estimate(const py::object& controller, int64_t budget, const py::object& seed_arg,
                     int threads) {
     return RunPythonEstimate(program_, options_, controller, budget,
-                             ToSceneNumber(seed_arg, "seed"), threads);
+                             ToSceneNumber(seed_arg, "seed"), threads, scene_options_);
   }
 
   const std::string& path() const { return path_; }
@@ -177,6 +181,7 @@ class Scenario {
   sampling::SampleOptions options_;
   double stable_s_ = 0;             // --stable's seconds (the check is options_.accept), 0 when off
   double settle_s_ = 0;             // --settle's seconds (options_.accept settles), 0 when off
+  std::string scene_options_;  // harness::SceneOptionsOf the options above, for the records
   sampling::SceneSampler sampler_;  // for sample(): its caches persist between calls
 };
 
@@ -260,6 +265,8 @@ py::list Scenario::DescribeClasses(const analysis::ScenarioOutline& outline) con
 
 std::unique_ptr<Scenario> Compile(const std::string& path, const std::optional<std::string>& text,
                                   const LoadOptions& load) {
+  std::vector<std::string> words = {path};
+  for (const std::string& word : MakeSceneOptionWords(load)) words.push_back(word);
   std::shared_ptr<lang::CompiledProgram> program = CompileProgram(path, text, load);
   sampling::SampleOptions sample;
   sample.max_attempts = load.max_attempts;
@@ -278,10 +285,28 @@ std::unique_ptr<Scenario> Compile(const std::string& path, const std::optional<s
   } catch (const std::invalid_argument& error) {
     throw py::value_error(error.what());
   }
-  return std::make_unique<Scenario>(std::move(program), path, sample, load.stable_s, load.settle_s);
+  return std::make_unique<Scenario>(std::move(program), path, sample, load.stable_s, load.settle_s,
+                                    harness::SceneOptionsOf(words));
 }
 
 }  // namespace
+
+std::vector<std::string> MakeSceneOptionWords(const LoadOptions& load) {
+  std::vector<std::string> words;
+  if (load.naive) words.push_back("--naive");
+  if (load.sampler != "rejection") words.insert(words.end(), {"--sampler", load.sampler});
+  if (load.stable_s > 0) {
+    words.push_back(fmt::format("--stable={}", load.stable_s));
+    if (load.stable_move_m != LoadOptions{}.stable_move_m) {
+      words.insert(words.end(), {"--stable-move", fmt::format("{}", load.stable_move_m)});
+    }
+    if (load.stable_turn_deg != LoadOptions{}.stable_turn_deg) {
+      words.insert(words.end(), {"--stable-turn", fmt::format("{}", load.stable_turn_deg)});
+    }
+  }
+  if (load.settle_s > 0) words.push_back(fmt::format("--settle={}", load.settle_s));
+  return words;
+}
 
 std::shared_ptr<lang::CompiledProgram> CompileProgram(const std::string& path,
                                                       const std::optional<std::string>& text,

@@ -132,8 +132,10 @@ py::list ListCoordinates(const lang::CompiledProgram& program,
 
 py::list RunPythonSearch(const ProgramPtr& program, const sampling::SampleOptions& sample,
                          const py::function& controller, int64_t budget,
-                         const std::string& strategy, uint64_t seed, std::optional<int64_t> batch) {
+                         const std::string& strategy, uint64_t seed, std::optional<int64_t> batch,
+                         const std::string& scene_options) {
   search::SearchOptions options;
+  options.run.scene_options = scene_options;
   if (strategy == "bo") {
     // Bayesian optimisation: the points of each generation come from probrobscene._bo (a
     // Gaussian process on scikit-learn), called on this thread with the GIL held.
@@ -179,7 +181,7 @@ py::list RunPythonSearch(const ProgramPtr& program, const sampling::SampleOption
 
 py::dict RunPythonEstimate(const ProgramPtr& program, const sampling::SampleOptions& sample,
                            const py::object& controller, int64_t budget, uint64_t seed,
-                           int threads) {
+                           int threads, const std::string& scene_options) {
   if (budget < search::kMinEstimateBudget) {
     throw py::value_error("budget must be >= " + std::to_string(search::kMinEstimateBudget) +
                           " (episodes to adapt a proposal and then sample), got " +
@@ -191,6 +193,7 @@ py::dict RunPythonEstimate(const ProgramPtr& program, const sampling::SampleOpti
   options.run.sample = sample;
   options.run.seed = seed;
   options.run.spec_hash = search::CalcSpecHash(*program);
+  options.run.scene_options = scene_options;
   std::atomic<bool> cancel{false};
   options.run.cancel = &cancel;
   search::EstimateSummary summary;

@@ -127,3 +127,16 @@ def test_an_estimate_covers_a_thin_band_or_says_it_cannot(prs_binary, tmp_path):
                 or "degenerate" in result["unreliable_because"], result
         again = run_prs(prs_binary, "estimate", "--from", str(out), "--json")
         assert json.loads(again.stdout) == result
+
+
+def test_python_records_name_their_scene_options(tmp_path):
+    # probrobscene.estimate and search write the records prs does: the program's fingerprint
+    # and the options that shaped the scenes, so that compare and --from can check them.
+    import probrobscene as prs
+    cube, _ = write_files(tmp_path)
+    scenario = prs.load(cube, search_path=[EXAMPLES], naive=True)
+    result = prs.estimate(scenario, lambda scene: "success", budget=200, seed=1)
+    assert {r["scene_options"] for r in result["records"]} == {"--naive"}
+    assert all(len(r["spec"]) == 16 for r in result["records"])
+    found = prs.search(scenario, lambda scene: "success", budget=40, seed=1)
+    assert {r["scene_options"] for r in found} == {"--naive"}
