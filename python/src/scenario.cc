@@ -181,7 +181,7 @@ class Scenario {
   sampling::SampleOptions options_;
   double stable_s_ = 0;             // --stable's seconds (the check is options_.accept), 0 when off
   double settle_s_ = 0;             // --settle's seconds (options_.accept settles), 0 when off
-  std::string scene_options_;  // harness::SceneOptionsOf the options above, for the records
+  std::string scene_options_;       // harness::SceneOptionsOf the options above, for the records
   sampling::SceneSampler sampler_;  // for sample(): its caches persist between calls
 };
 

@@ -180,8 +180,8 @@ py::list RunPythonSearch(const ProgramPtr& program, const sampling::SampleOption
 }
 
 py::dict RunPythonEstimate(const ProgramPtr& program, const sampling::SampleOptions& sample,
-                           const py::object& controller, int64_t budget, uint64_t seed,
-                           int threads, const std::string& scene_options) {
+                           const py::object& controller, int64_t budget, uint64_t seed, int threads,
+                           const std::string& scene_options) {
   if (budget < search::kMinEstimateBudget) {
     throw py::value_error("budget must be >= " + std::to_string(search::kMinEstimateBudget) +
                           " (episodes to adapt a proposal and then sample), got " +
