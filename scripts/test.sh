@@ -16,6 +16,7 @@ tests/slurm/campaign_test.sh build/src/cli/prs
 scripts/test_python.sh
 scripts/build.sh asan
 ASAN_OPTIONS=detect_leaks=1 UBSAN_OPTIONS=print_stacktrace=1 \
+  LSAN_OPTIONS=suppressions=$PWD/tests/asan/lsan.supp \
   ctest --test-dir build-asan --output-on-failure -j2
 scripts/fuzz.sh 20
 scripts/fuzz.sh 10 long
