@@ -360,12 +360,7 @@ bool CheckSamplerTakesPoints(const sampling::SampleOptions& options, std::string
 
 bool CheckSamplerTakesPoints(const SamplingArgs& args, std::string_view with,
                              std::string_view instead) {
-  sampling::SampleOptions options;
-  if (args.sampler == "gibbs") options.gibbs = std::make_shared<sampling::GibbsRequest>();
-  if (args.sampler == "partial-rejection") {
-    options.partial_rejection = std::make_shared<sampling::PartialRejectionRequest>();
-  }
-  return CheckSamplerTakesPoints(options, with, instead);
+  return CheckSamplerTakesPoints(MakeSampleOptions(args), with, instead);
 }
 
 sampling::BatchOptions MakeBatchOptions(const SamplingArgs& args, int64_t count,
