@@ -32,7 +32,8 @@ def init(dir: PathLike, path: PathLike, n: int, *, seed: int = 0, shard_size: in
          max_attempts: int = 10_000, naive: bool = False, search: Optional[str] = None,
          batch: Optional[int] = None, stable: Union[bool, float, None] = None,
          stable_move: float = 0.01, stable_turn: float = 5.0,
-         settle: Union[bool, float, None] = None, sampler: str = "rejection") -> str:
+         settle: Union[bool, float, None] = None, sampler: str = "rejection",
+         estimate: bool = False) -> str:
     """Makes the campaign directory ``dir`` (new or empty), as ``prs campaign init``: ``n``
     episodes of ``controller`` (a built-in name) or ``exec`` (a shell command, docs/harness.md)
     in the scenario file ``path``, or ``n`` scenes without either, in shards of ``shard_size``.
@@ -40,7 +41,9 @@ def init(dir: PathLike, path: PathLike, n: int, *, seed: int = 0, shard_size: in
     episode (``--persistent``, with ``startup_timeout`` seconds for its handshake).
     With ``search`` ("ce", "anneal" or "random") the episodes are a failure search of budget
     ``n`` in generations of ``batch`` (default as ``prs search``), run generation after
-    generation (docs/search.md). ``stable`` and ``settle`` as for :func:`probrobscene.load`
+    generation (docs/search.md). With ``estimate=True`` they are ``prs estimate``'s run of
+    budget ``n`` (at least 200), also in generations, and :func:`merge` gives its records with
+    their weights and the estimate. ``stable`` and ``settle`` as for :func:`probrobscene.load`
     (``--stable``, ``--settle``): every shard keeps only scenes at rest, or settles them;
     ``sampler="gibbs"`` draws the scenes from Gibbs chains (``--sampler gibbs``) and
     ``sampler="partial-rejection"`` by partial rejection sampling, the same scenes for any
@@ -56,10 +59,12 @@ def init(dir: PathLike, path: PathLike, n: int, *, seed: int = 0, shard_size: in
         raise ValueError(f"unknown search strategy {search!r} (strategies: ce, anneal, random)")
     if batch is not None and (search is None or batch < 1):
         raise ValueError("batch is a search's generation size (>= 1): give search= too")
+    if estimate and sampler != "rejection":
+        raise ValueError("an estimate's weights need the rejection sampler: leave out sampler=")
     return _core.campaign_init(os.fspath(dir), os.fspath(path), options, n, shard_size, seed,
                                controller or "", exec or "", float(timeout), bool(persistent),
                                float(startup_timeout), search or "",
-                               batch or 0)
+                               batch or 0, bool(estimate))
 
 
 def run_shard(dir: PathLike, shard: int, threads: int = 1) -> int:
@@ -81,7 +86,9 @@ def status(dir: PathLike) -> Dict[str, Any]:
 def merge(dir: PathLike, output: PathLike, partial: bool = False) -> Dict[str, Any]:
     """Writes every shard's lines in index order to ``output`` (atomically), as ``prs campaign
     merge``: ``{"lines": N, "skipped": [...]}``. Raises ValueError naming the shards that are
-    not done, unless ``partial``."""
+    not done, unless ``partial``. An estimate campaign's records are written as ``prs estimate
+    -o`` writes them (with their weights), the dict has ``"estimate"`` (as
+    :func:`probrobscene.estimate` returns it, without the records), and ``partial`` is refused."""
     return _core.campaign_merge(os.fspath(dir), os.fspath(output), partial)
 
 
@@ -99,8 +106,8 @@ def run(dir_or_spec: PathLike, client=None, *, dir: Optional[PathLike] = None,
     With a ``dask.distributed`` ``client`` each shard is one task (``retries`` times again if
     its worker dies), run on ``threads_per_shard`` threads; the workers must see ``dir`` (a
     shared file system, or a LocalCluster). Without one the shards run here, on every CPU.
-    A search campaign runs generation after generation, each planned from the records of the
-    one before. Shards Slurm has queued or is running are left to it. Raises the first shard's
+    A search or estimate campaign runs generation after generation, each planned from the
+    records of the one before. Shards Slurm has queued or is running are left to it. Raises the first shard's
     error."""
     if _is_campaign(dir_or_spec):
         if dir is not None or n is not None or init_options:
@@ -115,7 +122,7 @@ def run(dir_or_spec: PathLike, client=None, *, dir: Optional[PathLike] = None,
         where = os.fspath(dir)
     where = os.path.abspath(where)
     while True:
-        _core.campaign_plan(where)  # a search's next generation, once the one before is done
+        _core.campaign_plan(where)  # the next generation, once the one before is done
         current = status(where)
         shards = current["to_run"]
         if not shards:

@@ -15,6 +15,7 @@
 #include "harness/harness.h"
 #include "lang/lang.h"
 #include "sampling/sampler.h"
+#include "search/estimate.h"
 
 namespace prs::python {
 
@@ -70,7 +71,7 @@ struct LoadOptions {
   double stable_s = 0;  // --stable: simulated seconds of the physics check; 0 off
   double stable_move_m = 0.01;
   double stable_turn_deg = 5;
-  double settle_s = 0;  // --settle: most simulated seconds to come to rest; 0 off
+  double settle_s = 0;                // --settle: most simulated seconds to come to rest; 0 off
   std::string sampler = "rejection";  // --sampler: "rejection" or "gibbs"
 };
 
@@ -97,8 +98,8 @@ py::list ListCoordinates(const lang::CompiledProgram& program,
 /// search.cc: a failure search with a Python callable as the controller; the records as dicts.
 py::list RunPythonSearch(const ProgramPtr& program, const sampling::SampleOptions& sample,
                          const py::function& controller, int64_t budget,
-                         const std::string& strategy, uint64_t seed,
-                         std::optional<int64_t> batch, const std::string& scene_options);
+                         const std::string& strategy, uint64_t seed, std::optional<int64_t> batch,
+                         const std::string& scene_options);
 /// search.cc: what a Python controller returned, as an episode result: an outcome name, or a
 /// dict with "outcome" and optionally "detail", "score" and anything else (the extra);
 /// "bad-answer" for anything else. Needs the GIL.
@@ -109,9 +110,12 @@ py::list ToPythonRecords(const std::vector<harness::EpisodeRecord>& records);
 void BindReplay(py::module_& m);
 /// search.cc: prs estimate with a Python callable (on this thread) or a built-in controller's
 /// name (on `threads` threads, without the GIL): the estimate and the records as a dict.
+/// An estimate as Python sees it (probrobscene.estimate's dict without "records").
+py::dict ToPythonEstimate(const search::Estimate& estimate);
+
 py::dict RunPythonEstimate(const ProgramPtr& program, const sampling::SampleOptions& sample,
-                           const py::object& controller, int64_t budget, uint64_t seed,
-                           int threads, const std::string& scene_options);
+                           const py::object& controller, int64_t budget, uint64_t seed, int threads,
+                           const std::string& scene_options);
 /// search.cc: report_markdown(lines, title).
 void BindSearch(py::module_& m);
 /// campaign.cc: campaign_init, campaign_run_shard, campaign_status, campaign_merge.

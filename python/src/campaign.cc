@@ -39,7 +39,7 @@ std::string Init(const std::string& dir, const std::string& path, const LoadOpti
                  uint64_t count, uint64_t shard_size, const py::object& seed_arg,
                  const std::string& controller, const std::string& exec, double timeout_s,
                  bool persistent, double startup_timeout_s, const std::string& strategy,
-                 uint64_t batch) {
+                 uint64_t batch, bool estimate) {
   campaign::CampaignSpec spec;
   spec.kind = controller.empty() && exec.empty() ? "sample" : "test";
   if (!strategy.empty()) {
@@ -47,6 +47,17 @@ std::string Init(const std::string& dir, const std::string& path, const LoadOpti
     spec.kind = "search";
     spec.strategy = strategy;
     spec.batch = batch;  // 0: as prs search picks
+  }
+  if (estimate) {
+    if (spec.kind != "test") {
+      throw py::value_error(spec.kind == "search" ? "give search= or estimate=True, not both"
+                                                  : "an estimate needs a controller or exec");
+    }
+    if (count < uint64_t(search::kMinEstimateBudget)) {
+      throw py::value_error("an estimate's budget n must be >= " +
+                            std::to_string(search::kMinEstimateBudget));
+    }
+    spec.kind = "estimate";
   }
   spec.controller = controller;
   spec.exec = exec;
@@ -160,12 +171,12 @@ py::dict Status(const std::string& dir) {
   });
 }
 
-// Search campaigns: plans the first generation that is not done (when the one before it is),
-// and returns whether the search is finished. Other campaigns: always "finished" planning.
+// Search and estimate campaigns: plans the first generation that is not done (when the one
+// before it is), and returns whether the last is planned. Other campaigns: always "finished".
 bool Plan(const std::string& dir) {
   return CallCampaign([&] {
     const campaign::CampaignSpec spec = campaign::ReadCampaign(dir);
-    if (spec.kind != "search") return true;
+    if (!spec.planned()) return true;
     const std::unique_ptr<lang::CompiledProgram> program = campaign::CompileCampaign(dir, spec);
     return campaign::PlanSearchStep(dir, spec, *program).finished;
   });
@@ -174,6 +185,20 @@ bool Plan(const std::string& dir) {
 py::dict Merge(const std::string& dir, const std::string& output, bool partial) {
   return CallCampaign([&] {
     const campaign::CampaignSpec spec = campaign::ReadCampaign(dir);
+    if (spec.kind == "estimate") {
+      // The records with their weights, as prs estimate -o writes them, and the estimate.
+      if (partial) throw py::value_error("an estimate's shards merge only when all are done");
+      const campaign::EstimateMerge merge =
+          campaign::MergeEstimate(dir, spec, *campaign::CompileCampaign(dir, spec));
+      output::LineWriter out(output);
+      for (const std::string& line : merge.lines) out.AddLine(line);
+      out.Commit();
+      py::dict result;
+      result["lines"] = merge.lines.size();
+      result["skipped"] = py::list();
+      result["estimate"] = ToPythonEstimate(merge.summary.estimate);
+      return result;
+    }
     std::vector<uint64_t> skipped;
     const std::vector<std::string> lines = campaign::MergeShards(dir, spec, partial, &skipped);
     output::LineWriter out(output);
@@ -192,7 +217,7 @@ void BindCampaign(py::module_& m) {
   m.def("campaign_init", &Init, py::arg("dir"), py::arg("path"), py::arg("options"),
         py::arg("count"), py::arg("shard_size"), py::arg("seed"), py::arg("controller"),
         py::arg("exec"), py::arg("timeout_s"), py::arg("persistent"), py::arg("startup_timeout_s"),
-        py::arg("strategy"), py::arg("batch"));
+        py::arg("strategy"), py::arg("batch"), py::arg("estimate"));
   m.def("campaign_plan", &Plan, py::arg("dir"));
   m.def("campaign_run_shard", &RunShard, py::arg("dir"), py::arg("shard"), py::arg("threads"));
   m.def("campaign_status", &Status, py::arg("dir"));

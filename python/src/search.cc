@@ -8,8 +8,8 @@
 #include <atomic>
 
 #include "bindings.h"
-#include "harness/harness.h"
 #include "controllers/builtin.h"
+#include "harness/harness.h"
 #include "search/estimate.h"
 #include "search/like.h"
 #include "search/report.h"
@@ -179,6 +179,27 @@ py::list RunPythonSearch(const ProgramPtr& program, const sampling::SampleOption
   return ToPythonRecords(summary.records);
 }
 
+py::dict ToPythonEstimate(const search::Estimate& e) {
+  py::dict out;
+  out["episodes"] = e.episodes;
+  out["ess"] = e.ess;
+  out["reliable"] = e.reliable;
+  if (!e.reliable) out["unreliable_because"] = search::DescribeUnreliable(e);
+  py::dict estimates;
+  for (const search::OutcomeEstimate& o : e.outcomes) {
+    py::dict d;
+    d["p"] = o.p;
+    d["ci95"] = py::make_tuple(o.ci_low, o.ci_high);
+    d["ess"] = e.ess;
+    d["failing_episodes"] = o.episodes;
+    d["iid_episodes_for_same_precision"] = o.iid_episodes;
+    estimates[py::str(o.outcome)] = d;
+  }
+  out["estimates"] = estimates;
+  if (e.outcomes.empty()) out["upper_bound_95"] = e.upper_bound;
+  return out;
+}
+
 py::dict RunPythonEstimate(const ProgramPtr& program, const sampling::SampleOptions& sample,
                            const py::object& controller, int64_t budget, uint64_t seed, int threads,
                            const std::string& scene_options) {
@@ -212,31 +233,13 @@ py::dict RunPythonEstimate(const ProgramPtr& program, const sampling::SampleOpti
       const py::function function = controller.cast<py::function>();
       options.run.threads = 1;  // the Python controller runs on this thread, with the GIL
       summary = search::RunEstimate(
-          *program,
-          [&] { return std::make_unique<PythonController>(program, function, &cancel); },
+          *program, [&] { return std::make_unique<PythonController>(program, function, &cancel); },
           options);
     }
   } catch (...) {
     RaiseSearchError(*program);
   }
-  const search::Estimate& e = summary.estimate;
-  py::dict out;
-  out["episodes"] = e.episodes;
-  out["ess"] = e.ess;
-  out["reliable"] = e.reliable;
-  if (!e.reliable) out["unreliable_because"] = search::DescribeUnreliable(e);
-  py::dict estimates;
-  for (const search::OutcomeEstimate& o : e.outcomes) {
-    py::dict d;
-    d["p"] = o.p;
-    d["ci95"] = py::make_tuple(o.ci_low, o.ci_high);
-    d["ess"] = e.ess;
-    d["failing_episodes"] = o.episodes;
-    d["iid_episodes_for_same_precision"] = o.iid_episodes;
-    estimates[py::str(o.outcome)] = d;
-  }
-  out["estimates"] = estimates;
-  if (e.outcomes.empty()) out["upper_bound_95"] = e.upper_bound;
+  py::dict out = ToPythonEstimate(summary.estimate);
   out["records"] = ToPythonRecords(summary.records);
   return out;
 }

@@ -1,5 +1,5 @@
 """probrobscene.campaign on a real Dask LocalCluster (two worker processes): a merged campaign is
-one machine's run (test, sample and search campaigns), shards done before are not run again, the
+one machine's run (test, sample, search and estimate campaigns), shards done before are not run again, the
 CLI and Python share directories, and bad directories get clear errors."""
 
 import json
@@ -89,6 +89,33 @@ def test_dask_search_campaign_runs_generation_after_generation_as_prs_search(cli
     assert [r["search"]["generation"] for r in merged] == [0] * 40 + [1] * 40 + [2] * 40
 
 
+def test_dask_estimate_campaign_merges_into_prs_estimates_records_and_estimate(client, prs_binary,
+                                                                               tmp_path):
+    camp = tmp_path / "estimate"
+    status = campaign.run(TABLE_CUBE, client, dir=camp, n=600, shard_size=40, seed=3,
+                          controller="planted-1-percent", estimate=True)
+    assert status["kind"] == "estimate" and status["to_run"] == []
+    merged = campaign.merge(camp, tmp_path / "merged.jsonl")
+    assert merged["lines"] == 600
+    result = run_prs(prs_binary, "estimate", TABLE_CUBE, "--controller", "planted-1-percent",
+                     "--budget", "600", "-s", "3", "--json", "-q",
+                     "-o", str(tmp_path / "single.jsonl"))
+    assert result.returncode == 0, result.stderr
+    assert records_without_times(tmp_path / "merged.jsonl") == \
+        records_without_times(tmp_path / "single.jsonl")
+    single = json.loads(result.stdout)["estimates"]["planted-failure"]
+    from_campaign = merged["estimate"]["estimates"]["planted-failure"]
+    assert from_campaign["p"] == single["p"]
+    assert list(from_campaign["ci95"]) == single["ci95"]
+    # The command line merges the same directory into the same estimate.
+    result = run_prs(prs_binary, "campaign", "merge", str(camp), "-o", str(tmp_path / "cli.jsonl"))
+    assert result.returncode == 0, result.stderr
+    assert "planted-failure" in result.stdout
+    assert (tmp_path / "cli.jsonl").read_text() == (tmp_path / "merged.jsonl").read_text()
+    with pytest.raises(ValueError, match="only when all are done"):
+        campaign.merge(camp, tmp_path / "partial.jsonl", partial=True)
+
+
 def test_a_campaign_made_by_prs_runs_here_without_a_cluster(prs_binary, tmp_path):
     camp = tmp_path / "camp"
     result = run_prs(prs_binary, "campaign", "init", str(camp), TABLE_CUBE, "-n", "40",
@@ -153,6 +180,10 @@ def test_bad_campaigns_and_arguments_are_clear_errors(tmp_path):
         campaign.init(tmp_path / "c2", TABLE_CUBE, 10, controller="demo-reach", search="bo")
     with pytest.raises(ValueError, match="needs a controller"):
         campaign.init(tmp_path / "c3", TABLE_CUBE, 10, search="ce")
+    with pytest.raises(ValueError, match="an estimate needs a controller"):
+        campaign.init(tmp_path / "c5", TABLE_CUBE, 400, estimate=True)
+    with pytest.raises(ValueError, match="budget n must be >= 200"):
+        campaign.init(tmp_path / "c6", TABLE_CUBE, 100, controller="demo-reach", estimate=True)
     with pytest.raises(ValueError, match="unknown controller 'tabel-cube'"):
         campaign.init(tmp_path / "c0", TABLE_CUBE, 10, controller="tabel-cube")
     with pytest.raises(prs.ScenarioError):

@@ -51,6 +51,7 @@ nlohmann::json ToJson(const CampaignSpec& s) {
           {"version", s.version},
           {"strategy", s.strategy},
           {"batch", s.batch},
+          {"generation_sizes", s.generation_sizes},
           {"stable_s", s.stable_s},
           {"stable_move_m", s.stable_move_m},
           {"stable_turn_deg", s.stable_turn_deg},
@@ -77,8 +78,7 @@ void WriteFileAtomically(const std::string& path, const std::string& text) {
   writer.Commit();
 }
 
-// A search campaign's generations are cut into shards one by one: every generation but the
-// last holds `batch` episodes, so it has the same number of shards.
+// A search or estimate campaign's generations are cut into shards one by one.
 namespace {
 uint64_t CeilDiv(uint64_t a, uint64_t b) { return (a + b - 1) / b; }
 }  // namespace
@@ -94,39 +94,63 @@ sampling::SampleOptions MakeSampleOptions(const CampaignSpec& spec) {
   return sample;
 }
 
+std::vector<uint64_t> CampaignSpec::sizes() const {
+  if (kind == "estimate") return generation_sizes;
+  if (batch == 0) return {count};
+  std::vector<uint64_t> sizes(count / batch, batch);
+  if (count % batch > 0) sizes.push_back(count % batch);
+  return sizes;
+}
+
 uint64_t CampaignSpec::shards() const {
-  if (batch == 0) return CeilDiv(count, shard_size);
-  return (count / batch) * CeilDiv(batch, shard_size) + CeilDiv(count % batch, shard_size);
+  uint64_t shards = 0;
+  for (uint64_t size : sizes()) shards += CeilDiv(size, shard_size);
+  return shards;
 }
 
 uint64_t CampaignSpec::generation(uint64_t k) const {
-  return batch == 0 ? 0 : k / CeilDiv(batch, shard_size);
+  const std::vector<uint64_t> all = sizes();
+  for (uint64_t g = 0; g < all.size(); ++g) {
+    const uint64_t here = CeilDiv(all[g], shard_size);
+    if (k < here) return g;
+    k -= here;
+  }
+  return all.size();
 }
 
-uint64_t CampaignSpec::generations() const { return batch == 0 ? 1 : CeilDiv(count, batch); }
+uint64_t CampaignSpec::generations() const { return sizes().size(); }
 
 uint64_t CampaignSpec::first(uint64_t k) const {
-  if (batch == 0) return k * shard_size;
-  const uint64_t per_generation = CeilDiv(batch, shard_size);
-  return (k / per_generation) * batch + (k % per_generation) * shard_size;
+  uint64_t start = 0;
+  for (uint64_t size : sizes()) {
+    const uint64_t here = CeilDiv(size, shard_size);
+    if (k < here) return start + k * shard_size;
+    k -= here;
+    start += size;
+  }
+  return start;
 }
 
 uint64_t CampaignSpec::size(uint64_t k) const {
-  if (batch == 0) return k + 1 < shards() ? shard_size : count - first(k);
-  const uint64_t g = generation(k);
-  const uint64_t generation_end = std::min(count, (g + 1) * batch);
-  return std::min(shard_size, generation_end - first(k));
+  uint64_t start = 0;
+  for (uint64_t size : sizes()) {
+    const uint64_t here = CeilDiv(size, shard_size);
+    if (k < here) return std::min(shard_size, size - k * shard_size);
+    k -= here;
+    start += size;
+  }
+  return 0;
 }
 
 std::vector<uint64_t> CampaignSpec::generation_shards(uint64_t g) const {
   std::vector<uint64_t> shards_of_g;
-  if (batch == 0) {
-    for (uint64_t k = 0; k < shards(); ++k) shards_of_g.push_back(k);
-    return shards_of_g;
-  }
-  const uint64_t per_generation = CeilDiv(batch, shard_size);
-  for (uint64_t k = g * per_generation; k < shards() && generation(k) == g; ++k) {
-    shards_of_g.push_back(k);
+  const std::vector<uint64_t> all = sizes();
+  uint64_t k = 0;
+  for (uint64_t h = 0; h < all.size() && h <= g; ++h) {
+    const uint64_t here = CeilDiv(all[h], shard_size);
+    for (uint64_t i = 0; i < here; ++i, ++k) {
+      if (h == g) shards_of_g.push_back(k);
+    }
   }
   return shards_of_g;
 }
@@ -149,6 +173,22 @@ CampaignSpec InitCampaign(const std::string& dir, const lang::CompiledProgram& p
     }
   } else if (spec.batch > 0) {
     throw CampaignError("a generation size is for search campaigns only");
+  }
+  if (spec.kind == "estimate") {
+    try {
+      search::EstimatePlanner check(program, MakeEstimateOptions(spec));
+      const int dimension =
+          int(sampling::DescribeCoordinates(program, MakeSampleOptions(spec)).size());
+      spec.generation_sizes.clear();
+      for (int64_t size : search::CalcEstimateLayout(int64_t(spec.count), dimension)) {
+        spec.generation_sizes.push_back(uint64_t(size));
+      }
+    } catch (const search::NothingToSearch& error) {
+      throw CampaignError(std::string(error.what()) +
+                          ": every scene is the same, so it fails always or never");
+    } catch (const std::invalid_argument& error) {  // a budget too small
+      throw CampaignError(error.what());
+    }
   }
   // Files the program reads besides its modules must sit below its directory to be carried.
   const std::vector<lang::ProgramResource> resources = lang::ListResources(program);
@@ -230,12 +270,16 @@ CampaignSpec ReadCampaign(const std::string& dir) {
     s.version = j.at("version");
     s.strategy = j.value("strategy", "");
     s.batch = j.value("batch", uint64_t{0});
+    s.generation_sizes = j.value("generation_sizes", std::vector<uint64_t>{});
     s.stable_s = j.value("stable_s", 0.0);
     s.stable_move_m = j.value("stable_move_m", 0.01);
     s.stable_turn_deg = j.value("stable_turn_deg", 5.0);
     s.settle_s = j.value("settle_s", 0.0);
-    if ((s.kind != "test" && s.kind != "sample" && s.kind != "search") || s.count == 0 ||
-        s.shard_size == 0 || (s.kind == "search") != (s.batch > 0)) {
+    uint64_t layout = 0;
+    for (uint64_t size : s.generation_sizes) layout += size;
+    if ((s.kind != "test" && s.kind != "sample" && s.kind != "search" && s.kind != "estimate") ||
+        s.count == 0 || s.shard_size == 0 || (s.kind == "search") != (s.batch > 0) ||
+        (s.kind == "estimate") != (layout == s.count)) {
       throw std::exception();
     }
     return s;
@@ -330,7 +374,7 @@ void RunShard(const std::string& dir, const CampaignSpec& spec,
   sample.accept = hooks.accept;
   std::vector<std::string> lines;
   if (spec.kind != "sample" && !factory) throw std::invalid_argument("RunShard: no controller");
-  if (spec.kind == "search") {
+  if (spec.planned()) {
     lines = RunSearchShard(dir, spec, program, k, *factory, threads, cancel, hooks);
   } else if (spec.kind == "test") {
     harness::RunOptions run;
@@ -365,6 +409,12 @@ void RunShard(const std::string& dir, const CampaignSpec& spec,
 
 std::vector<std::string> MergeShards(const std::string& dir, const CampaignSpec& spec, bool partial,
                                      std::vector<uint64_t>* skipped) {
+  if (spec.kind == "estimate" && partial) {
+    throw CampaignError(
+        "an estimate's weights come from every generation's records, so its shards merge only "
+        "when all are done: run the rest (prs campaign status " +
+        dir + " names them)");
+  }
   std::vector<std::string> lines;
   std::string not_done;
   for (uint64_t k = 0; k < spec.shards(); ++k) {

@@ -23,8 +23,9 @@ namespace prs::campaign {
 /// DIR/campaign.json: everything a shard needs, written once by InitCampaign.
 struct CampaignSpec {
   std::string id;         // unique per init: ties shards to this campaign
-  std::string kind;       // "test" (episode records), "sample" (scene lines) or "search" (records
+  std::string kind;       // "test" (episode records), "sample" (scene lines), "search" (records
                           // of a failure search, generation after generation: search_campaign.h)
+                          // or "estimate" (prs estimate's records, also in generations)
   std::string main_file;  // the scenario, relative to DIR ("spec/table_cube.prs")
   std::vector<std::string> scenario_words;                  // the FILE -I -p --naive given at init
   std::vector<std::pair<std::string, std::string>> params;  // -p NAME=VALUE
@@ -39,12 +40,15 @@ struct CampaignSpec {
   double timeout_s = 60;
   bool persistent = false;         // test, search: --exec started once per worker thread
   double startup_timeout_s = 120;  // its --startup-timeout
-  std::string spec_hash;  // search::CalcSpecHash of the copied program
-  std::string version;    // the prs that made it
+  std::string spec_hash;           // search::CalcSpecHash of the copied program
+  std::string version;             // the prs that made it
   // kind "search": the strategy ("ce", "anneal", "random") and the generation size; count is
   // the budget. Shards never straddle generations: each generation is cut on its own.
   std::string strategy;
   uint64_t batch = 0;
+  // kind "estimate": the size of each generation (search::CalcEstimateLayout); count is the
+  // budget. Its shards never straddle generations either.
+  std::vector<uint64_t> generation_sizes;
   // --stable: the simulated seconds of the physics check (0: off), and its tolerances.
   double stable_s = 0;
   double stable_move_m = 0.01;
@@ -56,10 +60,16 @@ struct CampaignSpec {
   /// The scenes (episodes) of shard k: [first, first + size).
   uint64_t first(uint64_t k) const;
   uint64_t size(uint64_t k) const;
-  /// Search campaigns: the generation of shard k, and the shards of generation g.
+  /// Search and estimate campaigns: the generation of shard k, and the shards of generation
+  /// g (test and sample campaigns are one generation).
   uint64_t generation(uint64_t k) const;
   uint64_t generations() const;
   std::vector<uint64_t> generation_shards(uint64_t g) const;
+  /// Whether each generation is planned from the records of the ones before (a search or an
+  /// estimate), so that generation g's shards wait for generation g - 1's.
+  bool planned() const { return kind == "search" || kind == "estimate"; }
+  /// The episodes of each generation.
+  std::vector<uint64_t> sizes() const;
 };
 
 /// Thrown with a message a user can act on (it names the file and what to do).
@@ -106,8 +116,8 @@ void WriteShard(const std::string& dir, const CampaignSpec& spec, uint64_t k,
 /// episodes (kind "search", from its generation's plan: search_campaign.h) of its range, on
 /// `threads` threads, and writes it. Throws CampaignError for a shard index out of range or a
 /// search generation that cannot start yet, and what harness::RunEpisodes /
-/// sampling::SampleBatch throw; std::invalid_argument when the spec asks for --stable or --settle and
-/// `hooks` has no scene test.
+/// sampling::SampleBatch throw; std::invalid_argument when the spec asks for --stable or --settle
+/// and `hooks` has no scene test.
 struct ShardHooks {
   /// Gets each distinct warning of the episodes once (harness::RunOptions::on_warning).
   std::function<void(const std::string&)> on_warning;

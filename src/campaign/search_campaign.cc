@@ -1,10 +1,13 @@
-// Search campaigns: the search replayed from the shards on disk, generation plans written for
-// the shards, and a shard's episodes run from its generation's plan.
+// Search and estimate campaigns: the search (estimate) replayed from the shards on disk,
+// generation plans written for the shards, a shard's episodes run from its generation's plan,
+// and an estimate's records given their weights at the merge.
 #include "campaign/search_campaign.h"
 
 #include <fmt/format.h>
 
 #include <filesystem>
+#include <map>
+#include <memory>
 #include <nlohmann/json.hpp>
 #include <sstream>
 
@@ -22,6 +25,15 @@ search::SearchOptions MakeSearchOptions(const CampaignSpec& spec) {
   }
   options.budget = static_cast<int64_t>(spec.count);
   options.batch = static_cast<int64_t>(spec.batch);
+  options.run.sample = MakeSampleOptions(spec);
+  options.run.seed = spec.seed;
+  options.run.scene_options = harness::SceneOptionsOf(spec.scenario_words);
+  return options;
+}
+
+search::EstimateOptions MakeEstimateOptions(const CampaignSpec& spec) {
+  search::EstimateOptions options;
+  options.budget = static_cast<int64_t>(spec.count);
   options.run.sample = MakeSampleOptions(spec);
   options.run.seed = spec.seed;
   options.run.scene_options = harness::SceneOptionsOf(spec.scenario_words);
@@ -51,9 +63,11 @@ std::optional<search::GenerationPlan> ReadGenerationPlan(const std::string& dir,
 
 namespace {
 
-// The records of generation g's shards, all done, in index order.
-std::vector<harness::EpisodeRecord> ReadGenerationRecords(const std::string& dir,
-                                                          const CampaignSpec& spec, uint64_t g) {
+// The records of generation g's shards, all done, in index order (and their lines, when
+// `lines` is not null).
+std::vector<harness::EpisodeRecord> ReadGenerationRecords(
+    const std::string& dir, const CampaignSpec& spec, uint64_t g,
+    std::vector<std::string>* lines = nullptr) {
   std::vector<harness::EpisodeRecord> records;
   for (uint64_t k : spec.generation_shards(g)) {
     bool ok = false;
@@ -62,14 +76,38 @@ std::vector<harness::EpisodeRecord> ReadGenerationRecords(const std::string& dir
     for (std::string line; std::getline(text, line);) {
       ++line_number;
       harness::EpisodeRecord record;
-      if (!search::ParseRecordForSearch(line, &record)) {
-        throw CampaignError(fmt::format("{}:{}: not an episode record; run shard {} again",
-                                        ShardPath(dir, k), line_number, k));
+      if (!search::ParseRecordForSearch(line, &record) ||
+          record.index != spec.first(k) + uint64_t(line_number - 1)) {
+        throw CampaignError(fmt::format("{}:{}: not episode {}'s record; run shard {} again",
+                                        ShardPath(dir, k), line_number,
+                                        spec.first(k) + uint64_t(line_number - 1), k));
       }
       records.push_back(std::move(record));
+      if (lines) lines->push_back(std::move(line));
     }
   }
   return records;
+}
+
+// A plan whose episodes are not the ones the campaign cut into shards at init.
+void CheckLayout(const CampaignSpec& spec, const search::GenerationPlan& plan) {
+  const std::vector<uint64_t> shards = spec.generation_shards(uint64_t(plan.generation));
+  if (shards.empty() || spec.first(shards.front()) != plan.start ||
+      spec.first(shards.back()) + spec.size(shards.back()) != plan.start + uint64_t(plan.count)) {
+    throw CampaignError(fmt::format(
+        "generation {} plans episodes {} to {}, which are not the campaign's shards of it: was "
+        "the campaign made by another prs? Start a new campaign",
+        plan.generation, plan.start, plan.start + uint64_t(plan.count)));
+  }
+}
+
+// The planner a search or estimate campaign replays.
+std::unique_ptr<search::GenerationPlanner> MakePlanner(const CampaignSpec& spec,
+                                                       const lang::CompiledProgram& program) {
+  if (spec.kind == "estimate") {
+    return std::make_unique<search::EstimatePlanner>(program, MakeEstimateOptions(spec));
+  }
+  return std::make_unique<search::SearchPlanner>(program, MakeSearchOptions(spec));
 }
 
 bool GenerationDone(const std::string& dir, const CampaignSpec& spec, uint64_t g,
@@ -84,10 +122,11 @@ bool GenerationDone(const std::string& dir, const CampaignSpec& spec, uint64_t g
 
 SearchStep PlanSearchStep(const std::string& dir, const CampaignSpec& spec,
                           const lang::CompiledProgram& program) {
-  search::SearchPlanner planner(program, MakeSearchOptions(spec));
+  const std::unique_ptr<search::GenerationPlanner> planner = MakePlanner(spec, program);
   SearchStep step;
-  for (uint64_t g = 0; !planner.done(); ++g) {
-    const search::GenerationPlan plan = planner.Next();
+  for (uint64_t g = 0; !planner->done(); ++g) {
+    const search::GenerationPlan plan = planner->Next();
+    CheckLayout(spec, plan);
     const std::string text = search::PlanToJson(plan).dump() + "\n";
     const std::optional<search::GenerationPlan> written = ReadGenerationPlan(dir, g);
     if (written && search::PlanToJson(*written).dump() + "\n" != text) {
@@ -109,7 +148,7 @@ SearchStep PlanSearchStep(const std::string& dir, const CampaignSpec& spec,
       step.unfinished = unfinished;
       return step;
     }
-    planner.Add(ReadGenerationRecords(dir, spec, g));
+    planner->Add(ReadGenerationRecords(dir, spec, g));
   }
   step.finished = true;
   step.generation = spec.generations();
@@ -132,7 +171,8 @@ std::vector<std::string> RunSearchShard(const std::string& dir, const CampaignSp
     }
     plan = ReadGenerationPlan(dir, g);
   }
-  harness::RunOptions run = MakeSearchOptions(spec).run;
+  harness::RunOptions run =
+      spec.kind == "estimate" ? MakeEstimateOptions(spec).run : MakeSearchOptions(spec).run;
   run.threads = threads;
   run.cancel = cancel;
   run.on_warning = hooks.on_warning;
@@ -144,6 +184,41 @@ std::vector<std::string> RunSearchShard(const std::string& dir, const CampaignSp
   search::RunGeneration(program, factory, *plan, run, spec.first(k),
                         static_cast<int64_t>(spec.size(k)));
   return lines;
+}
+
+EstimateMerge MergeEstimate(const std::string& dir, const CampaignSpec& spec,
+                            const lang::CompiledProgram& program) {
+  search::EstimatePlanner planner(program, MakeEstimateOptions(spec));
+  std::map<uint64_t, std::string> lines;  // by episode index
+  for (uint64_t g = 0; !planner.done(); ++g) {
+    const search::GenerationPlan plan = planner.Next();
+    std::vector<uint64_t> unfinished;
+    if (!GenerationDone(dir, spec, g, &unfinished)) {
+      throw CampaignError(fmt::format(
+          "the estimate needs every generation's records, and generation {}'s shards {} are not "
+          "done: run them (prs campaign status {} says why)",
+          g, fmt::join(unfinished, ", "), dir));
+    }
+    std::vector<std::string> text;
+    std::vector<harness::EpisodeRecord> records = ReadGenerationRecords(dir, spec, g, &text);
+    for (size_t i = 0; i < records.size(); ++i) lines[records[i].index] = std::move(text[i]);
+    CheckLayout(spec, plan);
+    planner.Add(std::move(records));
+  }
+  EstimateMerge merge;
+  merge.summary = planner.Finish();
+  // Each record's line as its shard wrote it, with the weighted ones' "search" tag replaced:
+  // ordered JSON keeps the fields where they were, so the lines equal one machine's.
+  for (const harness::EpisodeRecord& record : merge.summary.records) {
+    std::string& line = lines.at(record.index);
+    if (record.search.is_object() && record.search.value("strategy", "") == "importance") {
+      auto json = nlohmann::ordered_json::parse(line);
+      json["search"] = nlohmann::ordered_json::parse(record.search.dump());
+      line = json.dump(-1, ' ', false, nlohmann::ordered_json::error_handler_t::replace);
+    }
+    merge.lines.push_back(std::move(line));
+  }
+  return merge;
 }
 
 }  // namespace prs::campaign

@@ -385,7 +385,7 @@ std::vector<ShardState> DescribeShards(const std::string& dir, const CampaignSpe
       state = {Kind::kFailed, why};
     } else if (files.state == ShardStatus::State::kRunning) {
       state = {Kind::kRunning, "running or stopped (" + files.why + " exists)"};
-    } else if (spec.kind == "search" && g > 0 && !fs::exists(GenerationPlanPath(dir, g)) &&
+    } else if (spec.planned() && g > 0 && !fs::exists(GenerationPlanPath(dir, g)) &&
                (!generation_done[g - 1] || !queue.next_steps.empty())) {
       state = {Kind::kWaiting, generation_done[g - 1]
                                    ? fmt::format("Slurm job {} plans and submits generation {}",

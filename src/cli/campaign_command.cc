@@ -17,6 +17,7 @@
 #include "cli/commands.h"
 #include "cli/common.h"
 #include "cli/controller_options.h"
+#include "cli/estimate_report.h"
 #include "cli/interrupt.h"
 #include "output/line_writer.h"
 
@@ -36,8 +37,9 @@ struct CampaignArgs {
   ControllerArgs controller;
   int64_t count = 0;
   int64_t shard_size = 1000;
-  std::string strategy;  // --search: a search campaign
-  int64_t batch = 0;     // its generation size (0: as prs search picks)
+  std::string strategy;   // --search: a search campaign
+  int64_t batch = 0;      // its generation size (0: as prs search picks)
+  bool estimate = false;  // --estimate: an estimate campaign (prs estimate, -n its budget)
   // every subcommand
   std::string dir;
   // run-shard
@@ -73,6 +75,27 @@ int RunInit(const CampaignArgs& args) {
   } else if (args.batch > 0) {
     PrintError("--batch is the generation size of a search campaign: give --search too");
     return kExitUsage;
+  }
+  if (args.estimate) {
+    if (spec.kind != "test") {
+      PrintError(spec.kind == "search"
+                     ? "--estimate and --search are two kinds of campaign: give one"
+                     : "--estimate needs a controller (--controller NAME or --exec CMD)");
+      return kExitUsage;
+    }
+    if (!CheckSamplerTakesPoints(args.sampling, "an estimate campaign",
+                                 "leave out --sampler (the default, rejection, is exact for any "
+                                 "program, which the estimate's weights need)")) {
+      return kExitUsage;
+    }
+    if (args.count < search::kMinEstimateBudget) {
+      PrintError(
+          fmt::format("an estimate campaign's budget (-n {}) is too small to adapt a "
+                      "proposal and then sample: give at least {}",
+                      args.count, search::kMinEstimateBudget));
+      return kExitUsage;
+    }
+    spec.kind = "estimate";
   }
   if (spec.kind != "sample") {
     InterruptWatch interrupt;
@@ -117,6 +140,12 @@ int RunInit(const CampaignArgs& args) {
         "a {} search in {} of {}: generation g's shards can run once generation g - 1's are "
         "done (prs campaign slurm chains them)",
         spec.strategy, FormatCount(spec.generations(), "generation"), spec.batch));
+  } else if (spec.kind == "estimate") {
+    PrintNote(fmt::format(
+        "an estimate in {} (the adaptation's, then the sampling's {}): generation g's shards can "
+        "run once generation g - 1's are done (prs campaign slurm chains them)",
+        FormatCount(spec.generations(), "generation"),
+        FormatCount(spec.generation_sizes.back(), "episode")));
   }
   return kExitSuccess;
 }
@@ -195,7 +224,7 @@ int RunStatus(const CampaignArgs& args) {
     std::cout << fmt::format(
         "{}: {} of {} done, {} queued, {} running, {} failed, {} missing, {} bad", args.dir,
         counts[0], spec.shards(), counts[1], counts[2], counts[3], counts[4], counts[5]);
-    if (spec.kind == "search") {
+    if (spec.planned()) {
       // The generation under way: the first one with a shard not done.
       uint64_t g = 0;
       for (; g < spec.generations(); ++g) {
@@ -205,7 +234,7 @@ int RunStatus(const CampaignArgs& args) {
           break;
         }
       }
-      std::cout << fmt::format(", {} waiting; search generation {} of {}", counts[6],
+      std::cout << fmt::format(", {} waiting; {} generation {} of {}", counts[6], spec.kind,
                                std::min(g + 1, spec.generations()), spec.generations());
     }
     std::cout << "\n";
@@ -222,8 +251,33 @@ int RunStatus(const CampaignArgs& args) {
   });
 }
 
+// An estimate campaign's records with their weights, as prs estimate -o writes them, and the
+// estimate as prs estimate prints it.
+ExitCode MergeEstimate(const CampaignArgs& args, const campaign::CampaignSpec& spec) {
+  if (args.partial) {
+    PrintError(
+        "an estimate's weights come from every generation's records, so its shards merge only "
+        "when all are done: leave out --partial and run the rest (prs campaign status " +
+        args.dir + " names them)");
+    return kExitUsage;
+  }
+  const campaign::EstimateMerge merge =
+      campaign::MergeEstimate(args.dir, spec, *campaign::CompileCampaign(args.dir, spec));
+  output::LineWriter out(args.output);
+  for (const std::string& line : merge.lines) out.AddLine(line);
+  out.Commit();
+  PrintNote(fmt::format(
+      "{} merged into {}: {} adapting the proposal, {} weighted (effective sample size {:.0f}); "
+      "prs estimate --from {} gives the same estimate",
+      FormatCount(merge.lines.size(), "record"), args.output, merge.summary.adapt_episodes,
+      merge.summary.estimate.episodes, merge.summary.estimate.ess, args.output));
+  PrintEstimate(merge.summary.estimate, false, false);
+  return kExitSuccess;
+}
+
 int RunMerge(const CampaignArgs& args) {
   return WithCampaign(args.dir, [&](const campaign::CampaignSpec& spec) {
+    if (spec.kind == "estimate") return MergeEstimate(args, spec);
     std::vector<uint64_t> skipped;
     const std::vector<std::string> lines =
         campaign::MergeShards(args.dir, spec, args.partial, &skipped);
@@ -274,14 +328,15 @@ int RunSlurm(CampaignArgs args, bool resume) {
       keep("--max-running", args.slurm.max_running, last.max_running);
       keep("--extra", args.slurm.extra, last.extra);
     }
-    int64_t generation = -1;  // search campaigns: the generation to submit
+    int64_t generation = -1;  // search and estimate campaigns: the generation to submit
     std::vector<uint64_t> generation_shards;
-    if (spec.kind == "search") {
+    if (spec.planned()) {
       const campaign::SearchStep step =
           campaign::PlanSearchStep(dir, spec, *campaign::CompileCampaign(dir, spec));
       if (step.finished) {
-        PrintNote("the search is complete: every generation is done (prs campaign merge " +
-                  args.dir + " -o OUT)");
+        PrintNote("the " + spec.kind +
+                  " is complete: every generation is done (prs campaign merge " + args.dir +
+                  " -o OUT)");
         return kExitSuccess;
       }
       generation = static_cast<int64_t>(step.generation);
@@ -304,9 +359,9 @@ int RunSlurm(CampaignArgs args, bool resume) {
     }
     if (!queue.next_steps.empty()) {
       PrintNote(
-          fmt::format("Slurm job {} (this search's next step) plans and submits what follows when "
+          fmt::format("Slurm job {} (this {}'s next step) plans and submits what follows when "
                       "generation {}'s tasks end; nothing to do (scancel it first to take over)",
-                      queue.next_steps.front(), generation));
+                      queue.next_steps.front(), spec.kind, generation));
       return kExitSuccess;
     }
     const std::vector<uint64_t> shards =
@@ -396,11 +451,11 @@ int RunSlurm(CampaignArgs args, bool resume) {
       }
       PrintNote(fmt::format(
           "submitted {}{}; follow it with prs campaign status {}",
-          job_ids.empty()
-              ? std::string("no shard (each is queued or running)")
-              : fmt::format(
-                    "Slurm job {} ({}{})", fmt::join(job_ids, ", "), tasks,
-                    generation >= 0 ? fmt::format(" of search generation {}", generation) : ""),
+          job_ids.empty() ? std::string("no shard (each is queued or running)")
+                          : fmt::format("Slurm job {} ({}{})", fmt::join(job_ids, ", "), tasks,
+                                        generation >= 0 ? fmt::format(" of {} generation {}",
+                                                                      spec.kind, generation)
+                                                        : ""),
           submission.next_job_id.empty()
               ? ""
               : fmt::format(" and job {}, which submits the next generation when it ends",
@@ -440,6 +495,9 @@ CommandRunner ConfigureCampaignCommand(CLI::App& command) {
   init->add_option("--batch", args->batch, "a search's generation size (default as prs search)")
       ->type_name("B")
       ->check(IntegerAtLeast(1));
+  init->add_flag("--estimate", args->estimate,
+                 "prs estimate's run of budget N in generations, each one job array; merge "
+                 "gives its records and its estimate");
   AddSamplingOptions(*init, args->sampling);
   CLI::App* run = command.add_subcommand("run-shard", "run one shard and write it atomically");
   run->add_option("DIR", args->dir, "the campaign directory")->required();

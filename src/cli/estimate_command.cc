@@ -13,9 +13,9 @@
 #include "cli/commands.h"
 #include "cli/common.h"
 #include "cli/controller_options.h"
+#include "cli/estimate_report.h"
 #include "cli/interrupt.h"
 #include "cli/progress.h"
-#include "cli/text_table.h"
 #include "output/line_writer.h"
 #include "search/estimate.h"
 #include "search/like.h"
@@ -23,10 +23,6 @@
 
 namespace prs::cli {
 namespace {
-
-// Below this many failing weighted episodes an interval rests on a variance estimated from
-// those few, and the command says so.
-constexpr int64_t kFewFailingEpisodes = 10;
 
 struct EstimateArgs {
   ScenarioArgs scenario;
@@ -39,76 +35,6 @@ struct EstimateArgs {
   bool quiet = false;
   std::vector<std::pair<std::string, const CLI::Option*>> run_options;  // refused with --from
 };
-
-std::string FormatPercent(double p) { return fmt::format("{:#.3g} %", 100 * p); }
-
-// One row per failure kind; i.i.d. records need no "as tight" column (they are the i.i.d.
-// episodes).
-std::string FormatEstimateTable(const search::Estimate& e) {
-  std::vector<std::string> header = {"outcome", "p", "95% interval", "failed"};
-  if (!e.iid) header.push_back("i.i.d. episodes for as tight");
-  TextTable table(header, e.iid ? "lrrr" : "lrrrr");
-  for (const search::OutcomeEstimate& o : e.outcomes) {
-    std::vector<std::string> row = {o.outcome, FormatPercent(o.p),
-                                     FormatPercent(o.ci_low) + " - " + FormatPercent(o.ci_high),
-                                     std::to_string(o.episodes)};
-    if (!e.iid) row.push_back(fmt::format("{:.0f}", o.iid_episodes));
-    table.AddRow(row);
-  }
-  return table.Format(0);
-}
-
-// The --json object: {"episodes", "ess", "reliable", "estimates": {...}, "upper_bound_95"}.
-std::string FormatEstimateJson(const search::Estimate& e) {
-  nlohmann::ordered_json out;
-  out["episodes"] = e.episodes;
-  out["ess"] = e.ess;
-  out["reliable"] = e.reliable;
-  if (!std::isnan(e.uncovered_share)) out["uncovered_share"] = e.uncovered_share;
-  if (!e.reliable) out["unreliable_because"] = search::DescribeUnreliable(e);
-  out["estimates"] = nlohmann::ordered_json::object();
-  if (e.reliable) {
-    for (const search::OutcomeEstimate& o : e.outcomes) {
-      out["estimates"][o.outcome] = {{"p", o.p},
-                                     {"ci95", {o.ci_low, o.ci_high}},
-                                     {"ess", e.ess},
-                                     {"failing_episodes", o.episodes},
-                                     {"iid_episodes_for_same_precision", o.iid_episodes}};
-    }
-    if (e.outcomes.empty()) out["upper_bound_95"] = e.upper_bound;
-  }
-  return out.dump() + "\n";
-}
-
-// Prints the estimate (table or JSON) and what it means; returns the exit code.
-int PrintEstimate(const search::Estimate& e, const EstimateArgs& args) {
-  if (args.json) {
-    std::cout << FormatEstimateJson(e) << std::flush;
-  } else if (e.reliable) {
-    if (!e.outcomes.empty()) std::cout << FormatEstimateTable(e) << std::flush;
-  }
-  if (!e.reliable) {
-    PrintWarning(search::DescribeUnreliable(e));
-  } else if (e.outcomes.empty() && !args.quiet) {
-    PrintNote(fmt::format(
-        "no failure in {}: the probability of failing is below {} (a 95 % "
-        "upper bound; a failure rarer than that may still exist)",
-        FormatCount(e.episodes, e.iid ? "i.i.d. episode" : "weighted episode"),
-        FormatPercent(e.upper_bound)));
-  } else if (!args.quiet) {
-    const int64_t fewest = std::min_element(e.outcomes.begin(), e.outcomes.end(),
-                                            [](const auto& a, const auto& b) {
-                                              return a.episodes < b.episodes;
-                                            })->episodes;
-    if (!e.iid && fewest < kFewFailingEpisodes) {
-      PrintNote(fmt::format(
-          "a failure seen in fewer than {} weighted episodes has an approximate interval: its "
-          "variance is estimated from those few; raise --budget to firm it up",
-          kFewFailingEpisodes));
-    }
-  }
-  return kExitSuccess;
-}
 
 // --from reads records and runs nothing: the options of a run would be ignored, so they are
 // refused. Returns the first one given, or "".
@@ -142,10 +68,9 @@ int EstimateFromRecords(const EstimateArgs& args) {
       PrintNote(e.iid ? fmt::format("{} in {}, drawn independently from the program's law",
                                     FormatCount(e.episodes, "i.i.d. episode"), args.from)
                       : fmt::format("{} in {}; effective sample size {:.0f}",
-                                    FormatCount(e.episodes, "weighted episode"), args.from,
-                                    e.ess));
+                                    FormatCount(e.episodes, "weighted episode"), args.from, e.ess));
     }
-    return PrintEstimate(e, args);
+    return PrintEstimate(e, args.json, args.quiet);
   } catch (const std::exception& error) {
     PrintError(error.what());
     return kExitScenarioError;
@@ -201,7 +126,7 @@ int RunEstimateCommand(const EstimateArgs& args) {
             "successes, and finds rare failures more slowly (docs/harness.md, \"score\")");
       }
     }
-    return PrintEstimate(summary.estimate, args);
+    return PrintEstimate(summary.estimate, args.json, args.quiet);
   } catch (const std::invalid_argument& error) {  // a budget too small
     progress.Erase();
     PrintError(error.what());

@@ -7,49 +7,18 @@
 #include <cmath>
 #include <cstdint>
 #include <functional>
+#include <memory>
 #include <optional>
 #include <string>
 #include <vector>
 
 #include "harness/harness.h"
 #include "sampling/sampler.h"
+#include "search/mixture.h"
 #include "search/report.h"
+#include "search/search.h"
 
 namespace prs::search {
-
-/// A defensive mixture over the unit cube: with probability `uniform_share` a uniform point,
-/// else independent normals per coordinate truncated to [0, 1) (around `mean`, or around one of
-/// `centres` picked at random). Its density is at least
-/// `uniform_share` everywhere, so importance weights stay below 1 / uniform_share.
-struct MixtureProposal {
-  /// Per coordinate; a `std` of 0 makes that coordinate uniform in the normals' component too
-  /// (one that failing does not depend on).
-  std::vector<double> mean, std;
-  double uniform_share = 1;
-  /// When not empty, the normals' component is itself an equal mixture of normals around
-  /// these points (each of dimension() coordinates; `mean` unused), which follows a failure
-  /// region of any shape.
-  std::vector<std::vector<double>> centres;
-
-  /// The density at `u` (dimension() coordinates in [0, 1)).
-  double CalcDensity(const double* u) const;
-  /// The share of that density the normals give at `u` (0 where only the uniform share draws).
-  double CalcKernelShare(const double* u) const;
-  int dimension() const { return static_cast<int>(mean.size()); }
-};
-
-/// Every attempt of every scene at a point of the mixture (none reads the stream alone), so
-/// that the accepted points are distributed as the mixture restricted to the accepted set, and
-/// 1 / CalcDensity is each scene's importance weight against the program's law.
-class MixturePoints : public sampling::AttemptPoints {
- public:
-  explicit MixturePoints(MixtureProposal proposal) : proposal_(std::move(proposal)) {}
-  int dimension() const override { return proposal_.dimension(); }
-  bool Point(uint64_t seed, uint64_t index, int64_t attempt, double* u) const override;
-
- private:
-  MixtureProposal proposal_;
-};
 
 /// One failure outcome's probability under the program's law.
 struct OutcomeEstimate {
@@ -160,17 +129,52 @@ struct EstimateSummary {
 /// The smallest budget RunEstimate takes.
 inline constexpr int64_t kMinEstimateBudget = 200;
 
+/// The sizes of an estimate's generations, in order: the cross-entropy search's (adapt_share
+/// of the budget, at least 60), the probe's (none when a tenth of the budget gives fewer than
+/// four episodes per coordinate), the exploration's (10 %), each round of the walks (10 %),
+/// and the sampling's (the rest). A function of these alone, so that a campaign cuts its
+/// shards at init (docs/cluster.md); without failures to probe, explore or walk from, those
+/// generations draw the sampling proposal instead.
+std::vector<int64_t> CalcEstimateLayout(int64_t budget, int dimension,
+                                        double adapt_share = EstimateOptions{}.adapt_share);
+
+/// The estimate's state between generations, laid out as CalcEstimateLayout says: RunEstimate
+/// is a loop over it, and src/campaign replays it from the records on disk. Each generation's
+/// plan is a pure function of the earlier generations' records (index, outcome, score and
+/// coordinates are all it reads), so the same for any thread count, machine or shard layout.
+class EstimatePlanner : public GenerationPlanner {
+ public:
+  /// Throws std::invalid_argument for a budget under kMinEstimateBudget, and NothingToSearch.
+  EstimatePlanner(const lang::CompiledProgram& program, const EstimateOptions& options);
+  ~EstimatePlanner() override;
+  bool done() const override;
+  GenerationPlan Next() override;
+  void Add(std::vector<harness::EpisodeRecord> records) override;
+  /// Whether a generation's records are weighted ones (the exploration's and the sampling's):
+  /// their "search" tag says "estimate-explore" or "estimate-sample" until Finish gives them
+  /// their weights, so a record file of them alone estimates nothing.
+  static bool IsWeighted(const GenerationPlan& plan);
+  /// Once done(): every record as `prs estimate -o` writes them (the adaptation's in index
+  /// order, then the weighted ones in index order with their "search" tag of weights:
+  /// RunEstimate), and the estimate. `threads` is left at 1.
+  EstimateSummary Finish();
+
+ private:
+  struct State;
+  std::unique_ptr<State> state_;
+};
+
 /// Adapts a proposal toward failures — the failure search's cross-entropy method on
 /// adapt_share of the budget, a probe of which coordinates failing depends on (the others stay
 /// uniform), an exploration around the failures (10 %) whose weighted failures place kernels,
 /// random walks among the failures from them (10 %) whose states place the kernels of the
 /// sampling proposal — then runs the rest of the budget from that proposal mixed with the
-/// uniform law. The exploration's and the sampling's records carry "search":
-/// {"strategy": "importance", "phase", "weight": W, "uniform_share": S, "normalised"}, their
-/// weights those of both phases' deterministic mixture (docs/search.md derives them). A pure
-/// function of (program, controller, options) for any thread count. Throws
-/// std::invalid_argument for a budget under kMinEstimateBudget, NothingToSearch, and what
-/// harness::RunEpisodes throws.
+/// uniform law (EstimatePlanner). The exploration's and the sampling's records carry "search":
+/// {"strategy": "importance", "phase", "weight": W, "uniform_share": S, "normalised",
+/// "kernel_share"}, their weights those of both phases' deterministic mixture (docs/search.md
+/// derives them). A pure function of (program, controller, options) for any thread count.
+/// Throws std::invalid_argument for a budget under kMinEstimateBudget, NothingToSearch, and
+/// what harness::RunEpisodes throws.
 EstimateSummary RunEstimate(const lang::CompiledProgram& program,
                             const harness::ControllerFactory& factory,
                             const EstimateOptions& options);

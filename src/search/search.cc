@@ -10,6 +10,7 @@
 #include "geometry/random.h"
 #include "search/design.h"
 #include "search/like.h"
+#include "search/mixture.h"
 
 namespace prs::search {
 namespace {
@@ -37,7 +38,7 @@ constexpr double kFirstTemperature = 0.01;
 // Where a generation's points come from.
 class ProposalPoints : public sampling::AttemptPoints {
  public:
-  enum class Mode { kUniform, kSobol, kGaussian, kChain, kGiven };
+  enum class Mode { kUniform, kSobol, kGaussian, kChain, kGiven, kMixture };
 
   explicit ProposalPoints(const GenerationPlan& plan)
       : centres(plan.centres),
@@ -48,6 +49,17 @@ class ProposalPoints : public sampling::AttemptPoints {
     if (mode_ == Mode::kSobol) design_ = std::make_unique<Design>(DesignKind::kSobol, dimension_);
     if (mode_ == Mode::kGaussian) {
       gaussian_ = std::make_unique<GaussianPoints>(plan.mean, plan.std, kUniformShare);
+    }
+    if (mode_ == Mode::kMixture) {
+      if (int(plan.mean.size()) != dimension_ || int(plan.std.size()) != dimension_ ||
+          !(plan.uniform_share > 0 && plan.uniform_share <= 1)) {
+        throw std::invalid_argument("a mixture's plan has sizes or a uniform share out of range");
+      }
+      for (const auto& centre : plan.centres) {
+        if (int(centre.size()) != dimension_) throw std::invalid_argument("a centre's size");
+      }
+      mixture_ = std::make_unique<MixturePoints>(
+          MixtureProposal{plan.mean, plan.std, plan.uniform_share, plan.centres});
     }
     if ((mode_ == Mode::kChain || mode_ == Mode::kGiven) &&
         static_cast<int64_t>(centres.size()) < plan.count) {
@@ -61,12 +73,15 @@ class ProposalPoints : public sampling::AttemptPoints {
     if (name == "chain") return Mode::kChain;
     if (name == "given") return Mode::kGiven;
     if (name == "uniform") return Mode::kUniform;
+    if (name == "mixture") return Mode::kMixture;
     throw std::invalid_argument("unknown proposal mode '" + name + "'");
   }
 
   int dimension() const override { return dimension_; }
 
   bool Point(uint64_t seed, uint64_t index, int64_t attempt, double* u) const override {
+    // Every attempt of a mixture's scene at its points, so that 1 / density is its weight.
+    if (mode_ == Mode::kMixture) return mixture_->Point(seed, index, attempt, u);
     if (attempt >= kMaxProposalAttempts) return false;
     geometry::Rng rng = MakeProposalRng(seed, index, attempt);
     switch (mode_) {
@@ -96,6 +111,7 @@ class ProposalPoints : public sampling::AttemptPoints {
         }
         break;  // the given point was rejected: i.i.d. points after it
       case Mode::kUniform:
+      case Mode::kMixture:
         break;
     }
     for (int j = 0; j < dimension_; ++j) u[j] = rng.Uniform01();
@@ -111,6 +127,7 @@ class ProposalPoints : public sampling::AttemptPoints {
   uint64_t first_index_;
   std::unique_ptr<Design> design_;
   std::unique_ptr<GaussianPoints> gaussian_;
+  std::unique_ptr<MixturePoints> mixture_;
 };
 
 bool HasScore(const std::vector<harness::EpisodeRecord>& records) {
@@ -275,7 +292,7 @@ struct SearchPlanner::State {
   std::vector<double> mean, std;  // the cross-entropy proposal
   AnnealState anneal;
   SearchSummary summary;
-  int64_t done = 0;  // episodes planned and added
+  int64_t done = 0;      // episodes planned and added
   bool planned = false;  // Next() was called and Add() not yet
 };
 
@@ -328,7 +345,7 @@ GenerationPlan SearchPlanner::Next() {
     plan.centres = s.options.propose(s.summary.records, plan.count, s.dimension, plan.generation);
     CheckProposal(plan.centres, plan.count, s.dimension);
   } else if (strategy != Strategy::kRandom) {
-    plan.mode = plan.generation == 0                ? "sobol"
+    plan.mode = plan.generation == 0                  ? "sobol"
                 : strategy == Strategy::kCrossEntropy ? "gaussian"
                                                       : "chain";
   }
@@ -423,13 +440,14 @@ SearchSummary RunSearch(const lang::CompiledProgram& program,
 }
 
 nlohmann::json PlanToJson(const GenerationPlan& plan) {
-  nlohmann::json json = {{"generation", plan.generation}, {"start", plan.start},
-                         {"count", plan.count},           {"dimension", plan.dimension},
-                         {"mode", plan.mode},             {"strategy", plan.strategy}};
+  nlohmann::json json = {
+      {"generation", plan.generation}, {"start", plan.start}, {"count", plan.count},
+      {"dimension", plan.dimension},   {"mode", plan.mode},   {"strategy", plan.strategy}};
   if (!plan.mean.empty()) json["mean"] = plan.mean;
   if (!plan.std.empty()) json["std"] = plan.std;
   if (!plan.centres.empty()) json["centres"] = plan.centres;
   if (plan.mode == "chain") json["step"] = plan.step;
+  if (plan.mode == "mixture") json["uniform_share"] = plan.uniform_share;
   return json;
 }
 
@@ -446,6 +464,7 @@ GenerationPlan PlanFromJson(const nlohmann::json& json) {
     plan.std = json.value("std", std::vector<double>{});
     plan.centres = json.value("centres", std::vector<std::vector<double>>{});
     plan.step = json.value("step", 0.0);
+    plan.uniform_share = json.value("uniform_share", 1.0);
     ProposalPoints check(plan);  // throws for an unknown mode or missing centres
     if (plan.count < 0 || plan.dimension < 1 ||
         (plan.mode == "gaussian" && (static_cast<int>(plan.mean.size()) != plan.dimension ||

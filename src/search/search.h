@@ -93,28 +93,40 @@ struct GenerationPlan {
   int64_t count = 0;
   int dimension = 0;
   std::string mode;  // "uniform", "sobol", "gaussian" (mean, std), "chain" (centres, step),
-                     // "given" (centres)
+                     // "given" (centres), "mixture" (prs estimate's MixtureProposal: mean, std,
+                     // centres, uniform_share)
   std::vector<double> mean, std;
   std::vector<std::vector<double>> centres;
   double step = 0;
+  double uniform_share = 1;
   std::string strategy;  // the name records carry ("ce", "anneal", "random", "bo", ...)
 };
 nlohmann::json PlanToJson(const GenerationPlan& plan);
 /// Throws std::runtime_error for JSON that is not a plan.
 GenerationPlan PlanFromJson(const nlohmann::json& json);
 
-/// The search's state between generations: Next() plans a generation, Add() learns from its
-/// records. RunSearch is a loop over it; src/campaign replays it from records on disk.
-class SearchPlanner {
+/// A run in generations, each planned from the records of the ones before: Next() plans a
+/// generation, Add() learns from its records. The search and the estimate are loops over one;
+/// src/campaign replays one from the records on disk to plan a campaign's next generation.
+class GenerationPlanner {
+ public:
+  virtual ~GenerationPlanner() = default;
+  virtual bool done() const = 0;
+  virtual GenerationPlan Next() = 0;
+  /// The records of the generation Next() planned last, in index order.
+  virtual void Add(std::vector<harness::EpisodeRecord> records) = 0;
+};
+
+/// The search's state between generations.
+class SearchPlanner : public GenerationPlanner {
  public:
   /// Throws as RunSearch does for bad options and NothingToSearch.
   SearchPlanner(const lang::CompiledProgram& program, const SearchOptions& options);
-  ~SearchPlanner();
-  bool done() const;
+  ~SearchPlanner() override;
+  bool done() const override;
   /// The next generation (for kExternal, from options.propose).
-  GenerationPlan Next();
-  /// The records of the generation Next() planned last, in index order.
-  void Add(std::vector<harness::EpisodeRecord> records);
+  GenerationPlan Next() override;
+  void Add(std::vector<harness::EpisodeRecord> records) override;
   /// What the search has found so far (records in evaluation order).
   const SearchSummary& summary() const;
   SearchSummary TakeSummary();

@@ -5,7 +5,9 @@
 # status` reports both as failed, `prs campaign resume`, wait, merge, and compare the merged
 # records with one machine's `prs test` of the same N and seed (every field but wall_s). Then a
 # search campaign (three generations, each a job array and a next-step job that plans and
-# submits the next) with one task cancelled: merged, it equals one machine's `prs search`.
+# submits the next) with one task cancelled: merged, it equals one machine's `prs search`. And an
+# estimate campaign (six generations chained the same way): merged, its records and its printed
+# estimate equal one machine's `prs estimate`.
 # Without root or Slurm's packages it prints SKIPPED and the reason, and exits 0; on Debian 12
 # as root after scripts/setup.sh it must run.
 # Usage: tests/slurm/campaign_test.sh PRS_BINARY
@@ -139,4 +141,23 @@ grep -qx "#SBATCH --array=2%2" "$search"/slurm/submit-2.sh ||
   -o "$work/search_single.jsonl" >/dev/null
 same_records "$work/search_merged.jsonl" "$work/search_single.jsonl" 60 ||
   fail "the merged search != one machine's prs search"
+
+# An estimate campaign on Slurm: a budget of 200 is six generations (the search's three of 20,
+# the exploration's 20, one round of 16 walks, the sampling's 104 in three shards), each a job
+# array chained by next-step jobs. Merged, its records and its estimate are one machine's.
+estimate=$work/estimate
+"$prs" campaign init "$estimate" "$example" --controller planted-1-percent -n 200 --estimate \
+  --shard-size 50 -s 4
+"$prs" campaign slurm "$estimate" --max-running 2 >/dev/null
+estimate_done() { "$prs" campaign status "$estimate" 2>/dev/null | grep -q "8 of 8 done"; }
+wait_for 300 estimate_done ||
+  fail "the estimate campaign did not finish: $("$prs" campaign status "$estimate" 2>&1)"
+"$prs" campaign merge "$estimate" -o "$work/estimate_merged.jsonl" >"$work/estimate_merged.txt"
+"$prs" estimate "$example" --controller planted-1-percent --budget 200 -s 4 -q \
+  -o "$work/estimate_single.jsonl" >"$work/estimate_single.txt"
+same_records "$work/estimate_merged.jsonl" "$work/estimate_single.jsonl" 200 ||
+  fail "the merged estimate's records != one machine's prs estimate"
+cmp -s "$work/estimate_merged.txt" "$work/estimate_single.txt" ||
+  fail "the merged estimate printed $(cat "$work/estimate_merged.txt"), prs estimate printed \
+$(cat "$work/estimate_single.txt")"
 echo "slurm campaign test: passed" >&2

@@ -3,7 +3,6 @@
 // that rejects half the attempts (exact in closed form), and Table-Cube's planted failures —
 // with the intervals covering in at least 17 of 20 seeds and the error beating i.i.d. sampling.
 #include "search/estimate.h"
-#include "search/intervals.h"
 
 #include <gtest/gtest.h>
 
@@ -12,6 +11,7 @@
 
 #include "harness/registry.h"
 #include "sampling/test/scene_checks.h"
+#include "search/intervals.h"
 
 namespace prs::search {
 namespace {
@@ -73,8 +73,8 @@ TEST(CalcEstimateTest, WeightedSharesIntervalsAndTheBoundWithoutFailures) {
   EXPECT_NEAR(none.upper_bound, 1 - std::pow(0.05, 0.01), 1e-12);
   EXPECT_TRUE(none.iid);
   // A kind seen elsewhere only (an adaptation's) gets a row: no episode, [0, the bound].
-  const Estimate seen = CalcEstimate(std::vector<WeightedOutcome>(100, {"success", 1, 1}),
-                                     {"success", "no-path"});
+  const Estimate seen =
+      CalcEstimate(std::vector<WeightedOutcome>(100, {"success", 1, 1}), {"success", "no-path"});
   ASSERT_EQ(seen.outcomes.size(), 1u);
   EXPECT_EQ(seen.outcomes[0].outcome, "no-path");
   EXPECT_EQ(seen.outcomes[0].episodes, 0);
@@ -149,6 +149,18 @@ TEST(RunEstimateTest, ACornerOfATriangleThatRejectsHalfTheAttemptsIsCovered) {
   const harness::ControllerFactory factory = [] { return std::make_unique<CornerController>(); };
   const Coverage c = MeasureCoverage(*program, factory, 0.0032, "corner", 1000, 20);
   EXPECT_GE(c.covered, 17) << "95 % intervals over 20 seeds";
+  // Half the attempts are rejected, so the accepted set is smaller than the cube: every
+  // weighted record says its estimate is self-normalised.
+  EstimateOptions options;
+  options.budget = 400;
+  options.run.seed = 2;
+  int weighted = 0;
+  for (const harness::EpisodeRecord& r : RunEstimate(*program, factory, options).records) {
+    if (r.search.value("strategy", "") != "importance") continue;
+    ++weighted;
+    EXPECT_TRUE(r.search["normalised"].get<bool>());
+  }
+  EXPECT_GT(weighted, 100);
   EXPECT_LE(Median(c.errors), 0.25);
   EXPECT_LT(Median(c.errors), Median(c.iid_errors) / 2) << "i.i.d. with the same budget";
 }
@@ -197,6 +209,7 @@ TEST(RunEstimateTest, RecordsAreTheSameForAnyThreadCountAndCarryTheirWeights) {
     EXPECT_EQ(runs[0][i].search, runs[1][i].search);
   }
   EXPECT_EQ(runs[0].back().search["strategy"], "importance");
+  EXPECT_FALSE(runs[0].back().search["normalised"].get<bool>()) << "Table-Cube rejects nothing";
   EXPECT_GT(runs[0].back().search["weight"].get<double>(), 0);
   EXPECT_LE(runs[0].back().search["weight"].get<double>(), 1 / 0.2);
   EstimateOptions tiny;
