@@ -8,8 +8,10 @@
 #include <algorithm>
 #include <cmath>
 #include <memory>
+#include <optional>
 #include <set>
 #include <stdexcept>
+#include <tuple>
 
 #include "geometry/random.h"
 #include "search/estimate.h"
@@ -27,6 +29,10 @@ constexpr int64_t kWalkRounds = 12;    // walks: steps of each chain
 constexpr int64_t kMinFailuresToFit = 10;
 constexpr int64_t kProbeFailures = 8;
 constexpr size_t kKernels = 64;
+// The second search's share of the searches' budget: a failure with two causes is found one
+// cause at a time, so a second search runs with the first one's failure region deflated
+// (scored as safe) and finds the next cause if there is one.
+constexpr double kSecondSearchShare = 1.0 / 3;
 
 // The failures' mean and spread per coordinate (at least kMinProposalStd), each failure
 // weighted by 1 / the density it was drawn from (`drawn_from`, null for equal weights), so that
@@ -104,6 +110,45 @@ void PlaceKernelsAt(const std::vector<std::vector<double>>& points, MixturePropo
   NarrowByScott(k, proposal);
 }
 
+// Per coordinate that failing depends on (std > 0 in `mask`), the points' weighted spread
+// around the mean of the cause each is nearest to (`modes`, by distance over those
+// coordinates), pooled over the causes: the width of one cause's region, not the distance
+// between causes. At least kMinProposalStd.
+std::vector<double> CalcPooledSpread(const std::vector<const std::vector<double>*>& points,
+                                     const std::vector<double>& weights,
+                                     const std::vector<std::vector<double>>& modes,
+                                     const std::vector<double>& mask) {
+  const size_t d = mask.size(), causes = std::max<size_t>(1, modes.size());
+  std::vector<size_t> cause(points.size(), 0);
+  for (size_t i = 0; i < points.size() && modes.size() > 1; ++i) {
+    double best = INFINITY;
+    for (size_t c = 0; c < modes.size(); ++c) {
+      double distance = 0;
+      for (size_t j = 0; j < d; ++j) {
+        if (mask[j] > 0) distance += std::pow((*points[i])[j] - modes[c][j], 2);
+      }
+      if (distance < best) std::tie(best, cause[i]) = std::tuple(distance, c);
+    }
+  }
+  std::vector<double> spread(d, 0);
+  for (size_t j = 0; j < d; ++j) {
+    if (mask[j] <= 0) continue;
+    std::vector<double> total(causes, 0), mean(causes, 0);
+    for (size_t i = 0; i < points.size(); ++i) {
+      total[cause[i]] += weights[i];
+      mean[cause[i]] += weights[i] * (*points[i])[j];
+    }
+    double variance = 0, all = 0;
+    for (size_t c = 0; c < causes; ++c) mean[c] /= total[c] > 0 ? total[c] : 1;
+    for (size_t i = 0; i < points.size(); ++i) {
+      variance += weights[i] * std::pow((*points[i])[j] - mean[cause[i]], 2);
+      all += weights[i];
+    }
+    spread[j] = std::max(std::sqrt(variance / all), kMinProposalStd);
+  }
+  return spread;
+}
+
 // Scene coordinates of failures (the records' points), for the fits above.
 std::vector<const harness::EpisodeRecord*> Failures(
     const std::vector<harness::EpisodeRecord>& records) {
@@ -140,14 +185,22 @@ const char* PhaseTag(Phase phase) {  // the "strategy" its records carry until F
   return "";
 }
 
+// The proposal a weighted generation's plan draws from.
+MixtureProposal DrawnFrom(const GenerationPlan& plan) {
+  return {plan.mean, plan.std, plan.uniform_share, plan.centres};
+}
+
 struct Layout {
-  int64_t search = 0, probe = 0, explore = 0, chains = 0, rounds = 0, sample = 0;
+  int64_t search = 0;  // both searches: the first of search - second_search, then the second
+  int64_t second_search = 0;
+  int64_t probe = 0, explore = 0, chains = 0, rounds = 0, sample = 0;
   int64_t probe_per_coordinate = 0;
 };
 
 Layout MakeLayout(int64_t budget, int dimension, double adapt_share) {
   Layout l;
   l.search = std::max<int64_t>(60, std::llround(adapt_share * double(budget)));
+  l.second_search = std::llround(kSecondSearchShare * double(l.search));
   // The probe: up to kProbeFailures failures per coordinate, at most a tenth of the budget;
   // too few per coordinate tell nothing.
   l.probe_per_coordinate = std::min<int64_t>(kProbeFailures, budget / 10 / dimension);
@@ -169,11 +222,15 @@ std::vector<int64_t> CalcEstimateLayout(int64_t budget, int dimension, double ad
   }
   const Layout l = MakeLayout(budget, dimension, adapt_share);
   std::vector<int64_t> sizes;
-  const int64_t batch = DefaultBatch(l.search);
-  for (int64_t done = 0; done < l.search; done += batch) {
-    sizes.push_back(std::min(batch, l.search - done));
-  }
+  const auto add_search = [&](int64_t search) {
+    const int64_t batch = DefaultBatch(search);
+    for (int64_t done = 0; done < search; done += batch) {
+      sizes.push_back(std::min(batch, search - done));
+    }
+  };
+  add_search(l.search - l.second_search);
   if (l.probe > 0) sizes.push_back(l.probe);
+  add_search(l.second_search);
   sizes.push_back(l.explore);
   for (int64_t r = 0; r < l.rounds; ++r) sizes.push_back(l.chains);
   sizes.push_back(l.sample);
@@ -184,8 +241,16 @@ struct EstimatePlanner::State {
   EstimateOptions options;
   int dimension = 0;
   Layout layout;
+  const lang::CompiledProgram* program = nullptr;
+  // The first search, then the second, whose records it sees with the first one's failure
+  // region (`first_region`: the failures' mean and spread) scored as safe.
   std::unique_ptr<SearchPlanner> search;
-  SearchSummary found;                             // the search's, once it is done
+  int searches = 0;     // done
+  SearchSummary found;  // the first search's, once it is done
+  std::optional<MixtureProposal> first_region;
+  // The causes found: the mean of the first search's failures, and of the second's outside
+  // the first one's region.
+  std::vector<std::vector<double>> modes;
   std::vector<harness::EpisodeRecord> adaptation;  // every unweighted record, in index order
   // Every weighted generation: its records, the proposal they were drawn from, its phase.
   struct Weighted {
@@ -209,6 +274,29 @@ struct EstimatePlanner::State {
   uint64_t next = 0;  // the first index of the next generation
   int generation = 0;
 
+  void StartSearch(int64_t budget) {
+    SearchOptions search;
+    search.strategy = Strategy::kCrossEntropy;
+    search.budget = budget;
+    search.run = options.run;
+    this->search = std::make_unique<SearchPlanner>(*program, search);
+  }
+
+  // Whether `u` lies in the first search's failure region: within a Mahalanobis distance of
+  // the chi-square law's d + 4 sqrt(2 d) of its failures' mean, over the d coordinates failing
+  // depends on.
+  bool InFirstRegion(const std::vector<double>& u) const {
+    if (!first_region) return false;
+    double distance = 0;
+    int relevant = 0;
+    for (size_t j = 0; j < u.size(); ++j) {
+      if (proposal.std[j] <= 0) continue;  // one failing does not depend on (the probe)
+      distance += std::pow((u[j] - first_region->mean[j]) / first_region->std[j], 2);
+      ++relevant;
+    }
+    return distance < relevant + 4 * std::sqrt(2.0 * relevant);
+  }
+
   // The sampling proposal from `proposal` as it stands (wider, to cover the region).
   void Finalise() {
     for (double& std : proposal.std) std *= kSamplingWidening;
@@ -231,11 +319,9 @@ EstimatePlanner::EstimatePlanner(const lang::CompiledProgram& program,
   s.dimension = int(sampling::DescribeCoordinates(program, options.run.sample).size());
   if (s.dimension == 0) throw NothingToSearch("the program draws nothing at random");
   s.layout = MakeLayout(options.budget, s.dimension, options.adapt_share);
-  SearchOptions search;
-  search.strategy = Strategy::kCrossEntropy;
-  search.budget = s.layout.search;
-  search.run = options.run;
-  s.search = std::make_unique<SearchPlanner>(program, search);
+  s.program = &program;
+  s.adaptation.reserve(size_t(options.budget));  // `failures` points into it
+  s.StartSearch(s.layout.search - s.layout.second_search);
   s.proposal = {std::vector<double>(size_t(s.dimension), 0.5),
                 std::vector<double>(size_t(s.dimension), 1 / std::sqrt(12.0)),
                 1.0,
@@ -255,15 +341,18 @@ GenerationPlan EstimatePlanner::Next() {
   if (s.planned || done()) throw std::logic_error("EstimatePlanner::Next out of turn");
   GenerationPlan plan;
   const Layout& l = s.layout;
+  const int64_t first = l.search - l.second_search, second_start = first + l.probe;
   const int64_t explore_start = l.search + l.probe, walk_start = explore_start + l.explore;
-  if (!s.search->done()) {
+  const int64_t at = int64_t(s.next);
+  if (at < first || (at >= second_start && at < explore_start)) {
     s.phase = Phase::kSearch;
     plan = s.search->Next();
+    // The second search's episodes follow the probe's.
+    if (at >= second_start) plan.start += uint64_t(second_start);
   } else {
     plan.start = s.next;
     plan.dimension = s.dimension;
-    const int64_t at = int64_t(s.next);
-    s.phase = at < explore_start                      ? Phase::kProbe
+    s.phase = at < second_start                       ? Phase::kProbe
               : at < walk_start                       ? Phase::kExplore
               : at < walk_start + l.chains * l.rounds ? Phase::kWalk
                                                       : Phase::kSample;
@@ -271,8 +360,10 @@ GenerationPlan EstimatePlanner::Next() {
                  : s.phase == Phase::kExplore ? l.explore
                  : s.phase == Phase::kWalk    ? l.chains
                                               : l.sample;
-    // No failure to probe, explore or walk from: those episodes draw the sampling proposal.
-    if (s.final) s.phase = Phase::kSample;
+    // No failure to probe, explore or walk from: those episodes draw the sampling proposal
+    // (the probe's, the program's own law: the second search may still find failures).
+    if (s.final || (s.phase == Phase::kProbe && s.failures.empty())) s.phase = Phase::kSample;
+    const MixtureProposal uniform{s.proposal.mean, s.proposal.std, 1.0, {}};
     const MixtureProposal* draw = nullptr;
     if (s.phase == Phase::kProbe) {
       // Each of a few failures run again with one coordinate redrawn uniformly (spread over
@@ -301,7 +392,7 @@ GenerationPlan EstimatePlanner::Next() {
       plan.mode = "given";
       plan.centres = s.moves;
     } else {
-      draw = s.phase == Phase::kExplore ? &s.explore : &s.proposal;
+      draw = s.phase == Phase::kExplore ? &s.explore : s.final ? &s.proposal : &uniform;
       plan.mode = "mixture";
       plan.mean = draw->mean;
       plan.std = draw->std;
@@ -309,8 +400,8 @@ GenerationPlan EstimatePlanner::Next() {
       plan.uniform_share = draw->uniform_share;
     }
     plan.strategy = PhaseTag(s.phase);
-    plan.generation = s.generation;
   }
+  plan.generation = s.generation;
   s.plan = plan;
   s.planned = true;
   return plan;
@@ -328,45 +419,85 @@ void EstimatePlanner::Add(std::vector<harness::EpisodeRecord> records) {
   const Layout& l = s.layout;
   switch (s.phase) {
     case Phase::kSearch: {
-      s.search->Add(std::move(records));
+      // The second search sees the first one's failure region as safe.
+      std::vector<harness::EpisodeRecord> seen = records;
+      for (harness::EpisodeRecord& r : seen) {
+        if (s.searches == 1 && s.InFirstRegion(r.coordinates)) {
+          r.result.outcome = "success";
+          r.result.score = 1e9;
+        }
+      }
+      s.search->Add(std::move(seen));
+      for (harness::EpisodeRecord& r : records) s.adaptation.push_back(std::move(r));
       if (!s.search->done()) return;
-      s.found = s.search->TakeSummary();
+      if (++s.searches == 1) {
+        s.found = s.search->TakeSummary();
+        s.failures = Failures(s.adaptation);
+        if (!s.failures.empty()) {
+          MixtureProposal region = s.proposal;
+          FitToFailures(s.failures, nullptr, region);
+          s.first_region = region;
+          s.modes.push_back(region.mean);
+        }
+        s.StartSearch(l.second_search);
+        return;
+      }
+      // The second search's failures outside the first one's region: another cause.
+      std::vector<const harness::EpisodeRecord*> second;
+      for (const harness::EpisodeRecord* r : Failures(s.adaptation)) {
+        if (r->index >= uint64_t(l.search - l.second_search + l.probe) &&
+            !s.InFirstRegion(r->coordinates)) {
+          second.push_back(r);
+        }
+      }
+      if (!second.empty()) {
+        MixtureProposal region = s.proposal;
+        FitToFailures(second, nullptr, region);
+        s.modes.push_back(region.mean);
+      }
+      // The sampling's starting point: the first search's last proposal, on the coordinates
+      // failing depends on (the probe's), fitted to every failure of both searches when there
+      // are enough (the optimal proposal is the law restricted to the failures).
       if (!s.found.proposal_mean.empty()) {
         s.proposal.mean = s.found.proposal_mean;
-        s.proposal.std = s.found.proposal_std;
+        for (int j = 0; j < s.dimension; ++j) {
+          if (s.proposal.std[size_t(j)] > 0)
+            s.proposal.std[size_t(j)] = s.found.proposal_std[size_t(j)];
+        }
       }
-      for (harness::EpisodeRecord& r : s.found.records) s.adaptation.push_back(std::move(r));
-      // Fitted to every failure the search found when there are enough (the optimal proposal
-      // is the law restricted to the failures).
       s.failures = Failures(s.adaptation);
-      if (int64_t(s.failures.size()) >= kMinFailuresToFit)
+      if (int64_t(s.failures.size()) >= kMinFailuresToFit) {
         FitToFailures(s.failures, nullptr, s.proposal);
+      }
       s.proposal.uniform_share = s.options.uniform_share;
       // Nothing to aim at: the program's own law, whose episodes bound the failure rate best.
       if (s.failures.empty()) s.proposal.uniform_share = 1;
-      if (s.failures.empty() || int64_t(s.failures.size()) < kMinFailuresToFit) {
-        if (l.probe == 0 || s.failures.empty()) s.Finalise();
-      }
-      // The search's failures crowd around its best point: explore around them widely.
+      if (int64_t(s.failures.size()) < kMinFailuresToFit) s.Finalise();
+      // The search's failures crowd around its best point: explore around them widely (around
+      // each cause, at the width of one cause's region, when the second search found another).
       s.explore = s.proposal;
+      if (s.modes.size() > 1) {
+        std::vector<const std::vector<double>*> points;
+        for (const harness::EpisodeRecord* r : s.failures) points.push_back(&r->coordinates);
+        s.explore.std = CalcPooledSpread(points, std::vector<double>(points.size(), 1.0), s.modes,
+                                         s.explore.std);
+        s.explore.centres = s.modes;
+      }
       for (double& std : s.explore.std) std = std > 0 ? std::max(4 * std, 0.1) : 0;
       return;
     }
     case Phase::kProbe: {
-      // A coordinate whose redraw keeps half of the failures failing or more stays uniform.
+      // A coordinate whose redraw keeps half of the failures failing or more stays uniform
+      // (std 0), in every proposal after, and in the first search's failure region.
       const size_t m = size_t(l.probe_per_coordinate);
       for (int j = 0; j < s.dimension; ++j) {
         size_t still = 0;
         for (size_t k = 0; k < m; ++k) {
           still += records[size_t(j) * m + k].result.outcome != "success";
         }
-        if (2 * still >= m) {
-          s.proposal.std[size_t(j)] = 0;
-          s.explore.std[size_t(j)] = 0;
-        }
+        if (2 * still >= m) s.proposal.std[size_t(j)] = 0;
       }
       for (harness::EpisodeRecord& r : records) s.adaptation.push_back(std::move(r));
-      if (int64_t(s.failures.size()) < kMinFailuresToFit) s.Finalise();
       return;
     }
     case Phase::kExplore: {
@@ -376,9 +507,11 @@ void EstimatePlanner::Add(std::vector<harness::EpisodeRecord> records) {
       if (int64_t(found.size()) >= kMinFailuresToFit) {
         FitToFailures(found, &s.explore, s.proposal);
         PlaceKernels(found, s.explore, s.proposal);
-        const size_t starts = std::min<size_t>(kChains, s.proposal.centres.size());
-        for (int64_t k = 0; k < l.chains; ++k)
-          s.chains.push_back(s.proposal.centres[size_t(k) % starts]);
+        // The chains start at centres spread over all of them (over every cause).
+        const size_t centres = s.proposal.centres.size();
+        for (int64_t k = 0; k < l.chains; ++k) {
+          s.chains.push_back(s.proposal.centres[size_t(k) * centres / size_t(l.chains)]);
+        }
         s.step = s.proposal.std;
         for (double& std : s.step) std = std > 0 ? 2 * std : 0;
         if (l.rounds == 0) s.Finalise();
@@ -386,7 +519,7 @@ void EstimatePlanner::Add(std::vector<harness::EpisodeRecord> records) {
         s.proposal = s.explore;
         s.Finalise();
       }
-      s.weighted.push_back({std::move(records), s.explore, "explore"});
+      s.weighted.push_back({std::move(records), DrawnFrom(s.plan), "explore"});
       return;
     }
     case Phase::kWalk: {
@@ -410,7 +543,7 @@ void EstimatePlanner::Add(std::vector<harness::EpisodeRecord> records) {
       return;
     }
     case Phase::kSample:
-      s.weighted.push_back({std::move(records), s.proposal, "sample"});
+      s.weighted.push_back({std::move(records), DrawnFrom(s.plan), "sample"});
       return;
   }
 }

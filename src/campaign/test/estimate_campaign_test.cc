@@ -46,12 +46,14 @@ class EstimateCampaignTest : public testing::Test {
 };
 
 TEST(EstimateLayoutTest, TheBudgetSplitOfTheDocs) {
-  // docs/search.md: of 2,000 episodes on Table-Cube (11 coordinates), the search 600 (30
-  // generations of 20), the probe 88 (8 per coordinate), the exploration 200, the walks 192
-  // (12 rounds of 16 chains) and the sampling 920.
+  // docs/search.md: of 2,000 episodes on Table-Cube (11 coordinates), the first search 400 (20
+  // generations of 20), the probe 88 (8 per coordinate), the second search 200 (10 of 20), the
+  // exploration 200, the walks 192 (12 rounds of 16 chains) and the sampling 920.
   const std::vector<int64_t> sizes = search::CalcEstimateLayout(2000, 11);
-  std::vector<int64_t> expected(30, 20);
-  expected.insert(expected.end(), {88, 200});
+  std::vector<int64_t> expected(20, 20);
+  expected.push_back(88);
+  expected.insert(expected.end(), 10, 20);
+  expected.push_back(200);
   expected.insert(expected.end(), 12, 16);
   expected.push_back(920);
   EXPECT_EQ(sizes, expected);
@@ -60,7 +62,8 @@ TEST(EstimateLayoutTest, TheBudgetSplitOfTheDocs) {
   int64_t total = 0;
   for (int64_t s : small) total += s;
   EXPECT_EQ(total, 400);
-  EXPECT_EQ(small.size(), 6u + 1 + 2 + 1);  // 120 in 6 of 20; exploration 40; 2 rounds of 16
+  // The searches 80 (4 of 20) and 40 (2 of 20); the exploration 40; 2 rounds of 16; the rest.
+  EXPECT_EQ(small.size(), 4u + 2 + 1 + 2 + 1);
   EXPECT_EQ(small.back(), 400 - 120 - 40 - 32);
 }
 

@@ -4,6 +4,7 @@
 // shape is bench/estimate_coverage's (docs/search.md, "How good").
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
 
 #include "search/estimate.h"
@@ -59,14 +60,14 @@ TEST(FailureShapesTest, ScenesOfTheTwoPointsProgramAreUniform) {
 TEST(FailureShapesTest, EstimatesCoverOrSayTheyCannot) {
   // Over 20 seeds at the default budget, a run whose interval misses the truth must have said
   // "unreliable" instead, but for at most 2 (the 95 % the interval claims allows one in 20).
-  // Two disks of unequal mass are left out: a run that never draws near the smaller one has
-  // nothing to tell it is there, and 19 of 100 runs are still confidently wrong (docs/search.md,
-  // "How good"; issue 43 stays open for it).
+  // On two disks of unequal mass the second search (the first one's disk deflated) finds the
+  // other disk: the median error over the seeds is under 30 % (41 % with one search, which
+  // found one disk at a time; docs/search.md, "How good").
   const auto program = testing_shapes::CompileTwoPoints();
   for (const FailureShape& shape : testing_shapes::ListFailureShapes()) {
-    if (shape.name == "two-disks") continue;
     SCOPED_TRACE(shape.name);
     int confidently_wrong = 0;
+    std::vector<double> errors;
     for (uint64_t seed = 1; seed <= 20; ++seed) {
       EstimateOptions options;
       options.budget = 2000;
@@ -75,14 +76,19 @@ TEST(FailureShapesTest, EstimatesCoverOrSayTheyCannot) {
       const Estimate e =
           RunEstimate(*program, testing_shapes::MakeShapeControllerFactory(shape), options)
               .estimate;
-      if (!e.reliable) continue;
-      double low = 0, high = e.upper_bound;
+      double p = 0, low = 0, high = e.upper_bound;
       for (const OutcomeEstimate& o : e.outcomes) {
-        if (o.outcome == shape.name) low = o.ci_low, high = o.ci_high;
+        if (o.outcome == shape.name) p = o.p, low = o.ci_low, high = o.ci_high;
       }
+      errors.push_back(std::abs(p - shape.truth) / shape.truth);
+      if (!e.reliable) continue;
       confidently_wrong += !(low <= shape.truth && shape.truth <= high);
     }
     EXPECT_LE(confidently_wrong, 2);
+    if (shape.name == "two-disks") {
+      std::sort(errors.begin(), errors.end());
+      EXPECT_LT((errors[9] + errors[10]) / 2, 0.3);
+    }
   }
 }
 
