@@ -132,12 +132,10 @@ uint64_t CampaignSpec::first(uint64_t k) const {
 }
 
 uint64_t CampaignSpec::size(uint64_t k) const {
-  uint64_t start = 0;
   for (uint64_t size : sizes()) {
     const uint64_t here = CeilDiv(size, shard_size);
     if (k < here) return std::min(shard_size, size - k * shard_size);
     k -= here;
-    start += size;
   }
   return 0;
 }

@@ -203,6 +203,14 @@ EstimateMerge MergeEstimate(const std::string& dir, const CampaignSpec& spec,
     std::vector<harness::EpisodeRecord> records = ReadGenerationRecords(dir, spec, g, &text);
     for (size_t i = 0; i < records.size(); ++i) lines[records[i].index] = std::move(text[i]);
     CheckLayout(spec, plan);
+    // The shards ran from the plan on disk, the weights come from the replay: they must agree.
+    const std::optional<search::GenerationPlan> written = ReadGenerationPlan(dir, g);
+    if (!written || search::PlanToJson(*written).dump() != search::PlanToJson(plan).dump()) {
+      throw CampaignError(fmt::format(
+          "{} {} the estimate replayed from the shards before it, so its shards' weights would "
+          "be wrong: start a new campaign",
+          GenerationPlanPath(dir, g), written ? "differs from" : "is missing: it is part of"));
+    }
     planner.Add(std::move(records));
   }
   EstimateMerge merge;

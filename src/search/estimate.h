@@ -129,10 +129,11 @@ struct EstimateSummary {
 /// The smallest budget RunEstimate takes.
 inline constexpr int64_t kMinEstimateBudget = 200;
 
-/// The sizes of an estimate's generations, in order: the cross-entropy search's (adapt_share
-/// of the budget, at least 60), the probe's (none when a tenth of the budget gives fewer than
-/// four episodes per coordinate), the exploration's (10 %), each round of the walks (10 %),
-/// and the sampling's (the rest). A function of these alone, so that a campaign cuts its
+/// The sizes of an estimate's generations, in order: the first cross-entropy search's (two
+/// thirds of adapt_share of the budget, itself at least 60), the probe's (none when a tenth of
+/// the budget gives fewer than four episodes per coordinate), the second search's (the other
+/// third), the exploration's (10 %), each round of the walks (10 %), and the sampling's (the
+/// rest). A function of these alone, so that a campaign cuts its
 /// shards at init (docs/cluster.md); without failures to probe, explore or walk from, those
 /// generations draw the sampling proposal instead.
 std::vector<int64_t> CalcEstimateLayout(int64_t budget, int dimension,
@@ -164,9 +165,11 @@ class EstimatePlanner : public GenerationPlanner {
   std::unique_ptr<State> state_;
 };
 
-/// Adapts a proposal toward failures — the failure search's cross-entropy method on
-/// adapt_share of the budget, a probe of which coordinates failing depends on (the others stay
-/// uniform), an exploration around the failures (10 %) whose weighted failures place kernels,
+/// Adapts a proposal toward failures — the failure search's cross-entropy method on two thirds
+/// of adapt_share of the budget, a probe of which coordinates failing depends on (the others
+/// stay uniform), a second search on the last third that sees the first one's failure region
+/// as safe and so finds a second cause if there is one, an exploration around the causes
+/// (10 %) whose weighted failures place kernels,
 /// random walks among the failures from them (10 %) whose states place the kernels of the
 /// sampling proposal — then runs the rest of the budget from that proposal mixed with the
 /// uniform law (EstimatePlanner). The exploration's and the sampling's records carry "search":

@@ -259,7 +259,8 @@ struct EstimatePlanner::State {
     const char* phase;  // "explore" or "sample"
   };
   std::vector<Weighted> weighted;
-  std::vector<const harness::EpisodeRecord*> failures;  // the search's
+  // The searches' failures (the first one's until the second is done).
+  std::vector<const harness::EpisodeRecord*> failures;
   MixtureProposal proposal, explore;
   bool final = false;  // `proposal` is the sampling proposal: every later generation draws it
   // The walks: each chain's state, the step per coordinate, the rounds run, the states kept.

@@ -4,6 +4,8 @@
 #include <gtest/gtest.h>
 
 #include <filesystem>
+#include <fstream>
+#include <nlohmann/json.hpp>
 #include <regex>
 
 #include "campaign/search_campaign.h"
@@ -127,6 +129,21 @@ TEST_F(EstimateCampaignTest, AMergeNeedsEveryGeneration) {
         << error.what();
   }
   EXPECT_THROW(MergeShards(dir_, spec, true, nullptr), CampaignError);
+  // A plan on disk the replay contradicts: the shards ran from it, so no weights are given.
+  for (uint64_t g = 1; g < spec.generations(); ++g) {
+    for (uint64_t k : spec.generation_shards(g))
+      RunShard(dir_, spec, *program, k, &factory, 1, nullptr);
+  }
+  auto plan = nlohmann::json::parse(std::ifstream(GenerationPlanPath(dir_, 2)));
+  plan["mean"][0] = plan["mean"][0].get<double>() / 2;
+  std::ofstream(GenerationPlanPath(dir_, 2)) << plan.dump() << "\n";
+  try {
+    MergeEstimate(dir_, spec, *program);
+    ADD_FAILURE() << "merged an estimate whose plan on disk differs from the replay";
+  } catch (const CampaignError& error) {
+    EXPECT_NE(std::string(error.what()).find("generation-0002.json differs"), std::string::npos)
+        << error.what();
+  }
   // A budget too small to adapt and sample is refused at init, as by prs estimate.
   fs::remove_all(dir_);
   CampaignSpec tiny = spec;
