@@ -59,36 +59,36 @@ TEST_F(PrsTest, CampaignShardsMergeIntoOneMachinesRun) {
 // table, the higher draws rejected; --settle: a cube dropped near the table's edge, the scenes
 // where it falls off rejected.
 TEST_F(PrsTest, CampaignShardsKeepStableAndSettle) {
-  const auto expect_campaign_matches_sample = [&](const std::string& file,
-                                                  const std::string& option,
-                                                  const std::string& rejection) {
-    const std::string dir = (dir_ / ("campaign" + option)).string();
-    const std::vector<std::string> scenario = {file, "-I", Example(""), "-s", "4", option};
-    std::vector<std::string> init = {"campaign", "init", dir, "-n", "12", "--shard-size", "5"};
-    init.insert(init.end(), scenario.begin(), scenario.end());
-    Result r = Run(init);
-    ASSERT_EQ(r.exit_code, 0) << r.err;
-    for (const char* k : {"2", "0", "1"}) {
-      r = Run({"campaign", "run-shard", dir, k, "--threads", "2"});
-      ASSERT_EQ(r.exit_code, 0) << r.err;
-    }
-    const std::string merged = (dir_ / "merged.jsonl").string();
-    r = Run({"campaign", "merge", dir, "-o", merged});
-    ASSERT_EQ(r.exit_code, 0) << r.err;
-    std::vector<std::string> sample = {"sample", "-n", "12"};
-    sample.insert(sample.end(), scenario.begin(), scenario.end());
-    const Result single = Run(sample);
-    ASSERT_EQ(single.exit_code, 0) << single.err;
-    EXPECT_EQ(ReadText(merged), single.out);
-    EXPECT_NE(single.out.find("\"" + rejection + "\""), std::string::npos) << "none rejected";
-  };
+  const auto expect_campaign_matches_sample =
+      [&](const std::string& file, const std::string& option, const std::string& rejection) {
+        const std::string dir = (dir_ / ("campaign" + option)).string();
+        const std::vector<std::string> scenario = {file, "-I", Example(""), "-s", "4", option};
+        std::vector<std::string> init = {"campaign", "init", dir, "-n", "12", "--shard-size", "5"};
+        init.insert(init.end(), scenario.begin(), scenario.end());
+        Result r = Run(init);
+        ASSERT_EQ(r.exit_code, 0) << r.err;
+        for (const char* k : {"2", "0", "1"}) {
+          r = Run({"campaign", "run-shard", dir, k, "--threads", "2"});
+          ASSERT_EQ(r.exit_code, 0) << r.err;
+        }
+        const std::string merged = (dir_ / "merged.jsonl").string();
+        r = Run({"campaign", "merge", dir, "-o", merged});
+        ASSERT_EQ(r.exit_code, 0) << r.err;
+        std::vector<std::string> sample = {"sample", "-n", "12"};
+        sample.insert(sample.end(), scenario.begin(), scenario.end());
+        const Result single = Run(sample);
+        ASSERT_EQ(single.exit_code, 0) << single.err;
+        EXPECT_EQ(ReadText(merged), single.out);
+        EXPECT_NE(single.out.find("\"" + rejection + "\""), std::string::npos) << "none rejected";
+      };
+  expect_campaign_matches_sample(Write("drop.prs",
+                                       "from model import *\nt = Table on V3D(0, 0, 0)\n"
+                                       "d = Cube at V3D((-0.8, -0.6), 0.3, (0.825, 0.84))\n"),
+                                 "--stable=0.5", "unstable");
   expect_campaign_matches_sample(
-      Write("drop.prs", "from model import *\nt = Table on V3D(0, 0, 0)\n"
-                        "d = Cube at V3D((-0.8, -0.6), 0.3, (0.825, 0.84))\n"),
-      "--stable=0.5", "unstable");
-  expect_campaign_matches_sample(
-      Write("fall.prs", "from model import *\nt = Table on V3D(0, 0, 0)\n"
-                        "c = Cube at V3D((0.85, 0.95), 0, 1.2)\nrequire settled c.z > 0.5\n"),
+      Write("fall.prs",
+            "from model import *\nt = Table on V3D(0, 0, 0)\n"
+            "c = Cube at V3D((0.85, 0.95), 0, 1.2)\nrequire settled c.z > 0.5\n"),
       "--settle", "unsettled");
 }
 
@@ -287,6 +287,68 @@ TEST_F(PrsTest, CampaignSearchRunsGenerationAfterGenerationAsPrsSearch) {
   EXPECT_EQ(a, ReadRecordsWithoutTimes(single));
   r = Run({"campaign", "slurm", dir, "--print"});
   EXPECT_NE(r.err.find("the search is complete"), std::string::npos) << r.err;
+}
+
+TEST_F(PrsTest, CampaignEstimateMergesIntoPrsEstimate) {
+  const std::string dir = (dir_ / "estimate").string(), file = Example("table_cube.prs");
+  Result r = Run({"campaign", "init", dir, file, "-n", "600", "--estimate"});
+  EXPECT_EQ(r.exit_code, 2);
+  EXPECT_NE(r.err.find("--estimate needs a controller"), std::string::npos) << r.err;
+  r = Run({"campaign", "init", dir, file, "--controller", "planted-1-percent", "-n", "100",
+           "--estimate"});
+  EXPECT_EQ(r.exit_code, 2);
+  EXPECT_NE(r.err.find("too small to adapt a proposal and then sample: give at least 200"),
+            std::string::npos)
+      << r.err;
+  r = Run({"campaign", "init", dir, file, "--controller", "planted-1-percent", "-n", "600",
+           "--estimate", "--search", "ce"});
+  EXPECT_EQ(r.exit_code, 2);
+  EXPECT_NE(r.err.find("two kinds of campaign: give one"), std::string::npos) << r.err;
+  r = Run({"campaign", "init", dir, file, "--controller", "planted-1-percent", "-n", "600",
+           "--estimate", "--sampler", "gibbs"});
+  EXPECT_EQ(r.exit_code, 2);
+  EXPECT_NE(r.err.find("leave out --sampler"), std::string::npos) << r.err;
+  EXPECT_FALSE(fs::exists(dir));
+  // 600 episodes over Table-Cube's 11 coordinates: the first search's 6 generations of 20, the
+  // probe's 55, the second search's 3 of 20, the exploration's 60, 3 rounds of 16
+  // walks and the sampling's 257 (in shards of 100: 3).
+  r = Run({"campaign", "init", dir, file, "--controller", "planted-1-percent", "-n", "600",
+           "--estimate", "--shard-size", "100", "-s", "3"});
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  EXPECT_NE(r.err.find("an estimate in 15 generations"), std::string::npos) << r.err;
+  r = Run({"campaign", "status", dir});
+  EXPECT_NE(r.out.find("0 of 17 done"), std::string::npos) << r.out;
+  EXPECT_NE(r.out.find("estimate generation 1 of 15"), std::string::npos) << r.out;
+  r = Run({"campaign", "run-shard", dir, "16"});
+  EXPECT_EQ(r.exit_code, 2);
+  EXPECT_NE(r.err.find("run that generation's shards first (0)"), std::string::npos) << r.err;
+  const std::string merged = (dir_ / "merged.jsonl").string();
+  r = Run({"campaign", "merge", dir, "-o", merged});
+  EXPECT_EQ(r.exit_code, 2);
+  EXPECT_NE(r.err.find("generation 0's shards 0 are not done"), std::string::npos) << r.err;
+  for (int k = 0; k < 17; ++k) {
+    r = Run({"campaign", "run-shard", dir, std::to_string(k), "--threads", "2"});
+    ASSERT_EQ(r.exit_code, 0) << k << r.err;
+  }
+  r = Run({"campaign", "merge", dir, "-o", merged, "--partial"});
+  EXPECT_EQ(r.exit_code, 2);
+  r = Run({"campaign", "merge", dir, "-o", merged});
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  const std::string table = r.out;
+  const std::string single = (dir_ / "single.jsonl").string();
+  r = Run({"estimate", file, "--controller", "planted-1-percent", "--budget", "600", "-s", "3",
+           "-q", "-o", single});
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  EXPECT_EQ(table, r.out) << "the merged estimate prints as prs estimate does";
+  EXPECT_NE(table.find("planted-failure"), std::string::npos) << table;
+  const std::vector<json> a = ReadRecordsWithoutTimes(merged);
+  EXPECT_EQ(a.size(), 600u);
+  EXPECT_EQ(a, ReadRecordsWithoutTimes(single));
+  r = Run({"estimate", "--from", merged, "--json"});
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  const Result from_single = Run({"estimate", "--from", single, "--json"});
+  EXPECT_EQ(r.out, from_single.out);
+  EXPECT_NE(r.out.find("\"planted-failure\":{\"p\":"), std::string::npos) << r.out;
 }
 
 }  // namespace
