@@ -1,6 +1,7 @@
 // prs estimate's adaptation as generations (estimate.h, EstimatePlanner): the failure search's
-// cross-entropy method, a probe of which coordinates failing depends on, a weighted exploration
-// around the failures, random walks among them that place the sampling proposal's kernels, and
+// cross-entropy method, a probe of which coordinates failing depends on, a second search that
+// sees the first one's failure region as safe (a second cause), a weighted exploration around
+// the causes, random walks among the failures that place the sampling proposal's kernels, and
 // the sampling; then the weights of the deterministic mixture of the weighted generations
 // (derivations in docs/search.md).
 #include <fmt/format.h>
