@@ -101,6 +101,23 @@ void CheckLayout(const CampaignSpec& spec, const search::GenerationPlan& plan) {
   }
 }
 
+// Generation g's plan on disk, or nullopt while it is not written; throws CampaignError when
+// it is not the plan replayed from the shards before it (`replayed`) or not where the campaign
+// cut generation g's shards.
+std::optional<search::GenerationPlan> ReadReplayedPlan(const std::string& dir,
+                                                       const CampaignSpec& spec, uint64_t g,
+                                                       const search::GenerationPlan& replayed) {
+  CheckLayout(spec, replayed);
+  std::optional<search::GenerationPlan> written = ReadGenerationPlan(dir, g);
+  if (written && search::PlanToJson(*written).dump() != search::PlanToJson(replayed).dump()) {
+    throw CampaignError(fmt::format(
+        "{} differs from the {} replayed from the shards before it: was it written by another "
+        "prs? Start a new campaign",
+        GenerationPlanPath(dir, g), spec.kind));
+  }
+  return written;
+}
+
 // The planner a search or estimate campaign replays.
 std::unique_ptr<search::GenerationPlanner> MakePlanner(const CampaignSpec& spec,
                                                        const lang::CompiledProgram& program) {
@@ -126,21 +143,13 @@ SearchStep PlanSearchStep(const std::string& dir, const CampaignSpec& spec,
   SearchStep step;
   for (uint64_t g = 0; !planner->done(); ++g) {
     const search::GenerationPlan plan = planner->Next();
-    CheckLayout(spec, plan);
-    const std::string text = search::PlanToJson(plan).dump() + "\n";
-    const std::optional<search::GenerationPlan> written = ReadGenerationPlan(dir, g);
-    if (written && search::PlanToJson(*written).dump() + "\n" != text) {
-      throw CampaignError(fmt::format(
-          "{} differs from the search replayed from the shards before it: was it written by "
-          "another prs? Start a new campaign",
-          GenerationPlanPath(dir, g)));
-    }
+    const std::optional<search::GenerationPlan> written = ReadReplayedPlan(dir, spec, g, plan);
     std::vector<uint64_t> unfinished;
     if (!written || !GenerationDone(dir, spec, g, &unfinished)) {
       if (!written) {
         std::error_code error;
         fs::create_directories(dir + "/search", error);
-        WriteFileAtomically(GenerationPlanPath(dir, g), text);
+        WriteFileAtomically(GenerationPlanPath(dir, g), search::PlanToJson(plan).dump() + "\n");
         unfinished.clear();
         GenerationDone(dir, spec, g, &unfinished);
       }
@@ -202,14 +211,12 @@ EstimateMerge MergeEstimate(const std::string& dir, const CampaignSpec& spec,
     std::vector<std::string> text;
     std::vector<harness::EpisodeRecord> records = ReadGenerationRecords(dir, spec, g, &text);
     for (size_t i = 0; i < records.size(); ++i) lines[records[i].index] = std::move(text[i]);
-    CheckLayout(spec, plan);
     // The shards ran from the plan on disk, the weights come from the replay: they must agree.
-    const std::optional<search::GenerationPlan> written = ReadGenerationPlan(dir, g);
-    if (!written || search::PlanToJson(*written).dump() != search::PlanToJson(plan).dump()) {
+    if (!ReadReplayedPlan(dir, spec, g, plan)) {
       throw CampaignError(fmt::format(
-          "{} {} the estimate replayed from the shards before it, so its shards' weights would "
-          "be wrong: start a new campaign",
-          GenerationPlanPath(dir, g), written ? "differs from" : "is missing: it is part of"));
+          "{} is missing, yet generation {}'s shards are done: the weights need the plan they "
+          "ran from; start a new campaign",
+          GenerationPlanPath(dir, g), g));
     }
     planner.Add(std::move(records));
   }

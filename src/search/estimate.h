@@ -119,7 +119,6 @@ struct EstimateOptions {
 struct EstimateSummary {
   std::vector<harness::EpisodeRecord> records;  // adaptation, then sampling
   int64_t adapt_episodes = 0;  // unweighted: the search's, the probe's and the walks'
-  int generations = 0;         // of the search
   bool scored = false;         // the controller reported scores
   MixtureProposal proposal;    // the sampling phase's
   Estimate estimate;

@@ -111,22 +111,21 @@ void PlaceKernelsAt(const std::vector<std::vector<double>>& points, MixturePropo
   NarrowByScott(k, proposal);
 }
 
-// Per coordinate that failing depends on (std > 0 in `mask`), the points' weighted spread
-// around the mean of the cause each is nearest to (`modes`, by distance over those
-// coordinates), pooled over the causes: the width of one cause's region, not the distance
-// between causes. At least kMinProposalStd.
-std::vector<double> CalcPooledSpread(const std::vector<const std::vector<double>*>& points,
-                                     const std::vector<double>& weights,
+// Per coordinate that failing depends on (std > 0 in `mask`), the failures' spread around the
+// mean of the cause each is nearest to (`modes`, by distance over those coordinates), pooled
+// over the causes: the width of one cause's region, not the distance between causes. At least
+// kMinProposalStd.
+std::vector<double> CalcPooledSpread(const std::vector<const harness::EpisodeRecord*>& failures,
                                      const std::vector<std::vector<double>>& modes,
                                      const std::vector<double>& mask) {
   const size_t d = mask.size(), causes = std::max<size_t>(1, modes.size());
-  std::vector<size_t> cause(points.size(), 0);
-  for (size_t i = 0; i < points.size() && modes.size() > 1; ++i) {
+  std::vector<size_t> cause(failures.size(), 0);
+  for (size_t i = 0; i < failures.size() && modes.size() > 1; ++i) {
     double best = INFINITY;
     for (size_t c = 0; c < modes.size(); ++c) {
       double distance = 0;
       for (size_t j = 0; j < d; ++j) {
-        if (mask[j] > 0) distance += std::pow((*points[i])[j] - modes[c][j], 2);
+        if (mask[j] > 0) distance += std::pow(failures[i]->coordinates[j] - modes[c][j], 2);
       }
       if (distance < best) std::tie(best, cause[i]) = std::tuple(distance, c);
     }
@@ -134,18 +133,17 @@ std::vector<double> CalcPooledSpread(const std::vector<const std::vector<double>
   std::vector<double> spread(d, 0);
   for (size_t j = 0; j < d; ++j) {
     if (mask[j] <= 0) continue;
-    std::vector<double> total(causes, 0), mean(causes, 0);
-    for (size_t i = 0; i < points.size(); ++i) {
-      total[cause[i]] += weights[i];
-      mean[cause[i]] += weights[i] * (*points[i])[j];
+    std::vector<double> count(causes, 0), mean(causes, 0);
+    for (size_t i = 0; i < failures.size(); ++i) {
+      count[cause[i]] += 1;
+      mean[cause[i]] += failures[i]->coordinates[j];
     }
-    double variance = 0, all = 0;
-    for (size_t c = 0; c < causes; ++c) mean[c] /= total[c] > 0 ? total[c] : 1;
-    for (size_t i = 0; i < points.size(); ++i) {
-      variance += weights[i] * std::pow((*points[i])[j] - mean[cause[i]], 2);
-      all += weights[i];
+    for (size_t c = 0; c < causes; ++c) mean[c] /= count[c] > 0 ? count[c] : 1;
+    double variance = 0;
+    for (size_t i = 0; i < failures.size(); ++i) {
+      variance += std::pow(failures[i]->coordinates[j] - mean[cause[i]], 2);
     }
-    spread[j] = std::max(std::sqrt(variance / all), kMinProposalStd);
+    spread[j] = std::max(std::sqrt(variance / double(failures.size())), kMinProposalStd);
   }
   return spread;
 }
@@ -246,8 +244,9 @@ struct EstimatePlanner::State {
   // The first search, then the second, whose records it sees with the first one's failure
   // region (`first_region`: the failures' mean and spread) scored as safe.
   std::unique_ptr<SearchPlanner> search;
-  int searches = 0;     // done
-  SearchSummary found;  // the first search's, once it is done
+  int searches = 0;  // done
+  // The first search's last cross-entropy proposal (mean and spread per coordinate).
+  std::vector<double> first_mean, first_std;
   std::optional<MixtureProposal> first_region;
   // The causes found: the mean of the first search's failures, and of the second's outside
   // the first one's region.
@@ -421,19 +420,25 @@ void EstimatePlanner::Add(std::vector<harness::EpisodeRecord> records) {
   const Layout& l = s.layout;
   switch (s.phase) {
     case Phase::kSearch: {
-      // The second search sees the first one's failure region as safe.
-      std::vector<harness::EpisodeRecord> seen = records;
-      for (harness::EpisodeRecord& r : seen) {
-        if (s.searches == 1 && s.InFirstRegion(r.coordinates)) {
-          r.result.outcome = "success";
-          r.result.score = 1e9;
+      // The search planner reads what a campaign's replay gives it (index, outcome, score,
+      // coordinates); the second search sees the first one's failure region as safe.
+      std::vector<harness::EpisodeRecord> seen(records.size());
+      for (size_t i = 0; i < records.size(); ++i) {
+        seen[i].index = records[i].index;
+        seen[i].result = records[i].result;
+        seen[i].coordinates = records[i].coordinates;
+        if (s.searches == 1 && s.InFirstRegion(seen[i].coordinates)) {
+          seen[i].result.outcome = "success";
+          seen[i].result.score = 1e9;
         }
       }
       s.search->Add(std::move(seen));
       for (harness::EpisodeRecord& r : records) s.adaptation.push_back(std::move(r));
       if (!s.search->done()) return;
       if (++s.searches == 1) {
-        s.found = s.search->TakeSummary();
+        const SearchSummary first = s.search->TakeSummary();
+        s.first_mean = first.proposal_mean;
+        s.first_std = first.proposal_std;
         s.failures = Failures(s.adaptation);
         if (!s.failures.empty()) {
           MixtureProposal region = s.proposal;
@@ -460,11 +465,10 @@ void EstimatePlanner::Add(std::vector<harness::EpisodeRecord> records) {
       // The sampling's starting point: the first search's last proposal, on the coordinates
       // failing depends on (the probe's), fitted to every failure of both searches when there
       // are enough (the optimal proposal is the law restricted to the failures).
-      if (!s.found.proposal_mean.empty()) {
-        s.proposal.mean = s.found.proposal_mean;
-        for (int j = 0; j < s.dimension; ++j) {
-          if (s.proposal.std[size_t(j)] > 0)
-            s.proposal.std[size_t(j)] = s.found.proposal_std[size_t(j)];
+      if (!s.first_mean.empty()) {
+        s.proposal.mean = s.first_mean;
+        for (size_t j = 0; j < s.first_std.size(); ++j) {
+          if (s.proposal.std[j] > 0) s.proposal.std[j] = s.first_std[j];
         }
       }
       s.failures = Failures(s.adaptation);
@@ -479,10 +483,7 @@ void EstimatePlanner::Add(std::vector<harness::EpisodeRecord> records) {
       // each cause, at the width of one cause's region, when the second search found another).
       s.explore = s.proposal;
       if (s.modes.size() > 1) {
-        std::vector<const std::vector<double>*> points;
-        for (const harness::EpisodeRecord* r : s.failures) points.push_back(&r->coordinates);
-        s.explore.std = CalcPooledSpread(points, std::vector<double>(points.size(), 1.0), s.modes,
-                                         s.explore.std);
+        s.explore.std = CalcPooledSpread(s.failures, s.modes, s.explore.std);
         s.explore.centres = s.modes;
       }
       for (double& std : s.explore.std) std = std > 0 ? std::max(4 * std, 0.1) : 0;
@@ -554,7 +555,6 @@ EstimateSummary EstimatePlanner::Finish() {
   State& s = *state_;
   if (!done()) throw std::logic_error("EstimatePlanner::Finish before the last generation");
   EstimateSummary summary;
-  summary.generations = s.found.generations;
   summary.proposal = s.proposal;
   for (const harness::EpisodeRecord& r : s.adaptation) {
     summary.scored = summary.scored || r.result.score.has_value();
