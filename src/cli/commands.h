@@ -28,6 +28,7 @@ CommandRunner ConfigureStatsCommand(CLI::App& command);
 CommandRunner ConfigureViewCommand(CLI::App& command);
 CommandRunner ConfigureExportCommand(CLI::App& command);
 CommandRunner ConfigureRenderCommand(CLI::App& command);
+CommandRunner ConfigureDatasetCommand(CLI::App& command);
 CommandRunner ConfigureTestCommand(CLI::App& command);
 CommandRunner ConfigureSearchCommand(CLI::App& command);
 CommandRunner ConfigureEstimateCommand(CLI::App& command);

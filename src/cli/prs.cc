@@ -22,6 +22,8 @@ const std::vector<Command>& CommandTable() {
       {"view", "look at scenes in a local web viewer (or write one HTML file)", ConfigureViewCommand},
       {"export", "write scenes as MJCF, URDF, SDF, USD or glTF files", ConfigureExportCommand},
       {"render", "draw scenes as PNG pictures (offscreen, no display needed)", ConfigureRenderCommand},
+      {"dataset", "labelled pictures of scenes for learning: BOP and COCO (exact masks, poses)",
+       ConfigureDatasetCommand},
       {"test", "run a controller in sampled scenes, tabulate outcomes", ConfigureTestCommand},
       {"search", "search for scenes where a controller fails (ce, anneal)", ConfigureSearchCommand},
       {"estimate", "how often a controller fails, with a 95 % interval (importance sampling)",

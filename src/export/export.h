@@ -90,6 +90,24 @@ struct ExportScene {
 /// properties: it falls back to a default and adds a warning.
 ExportScene MakeExportScene(const lang::Scene& scene, std::string title);
 
+/// A triangle mesh in a body's frame (metres), counter-clockwise seen from outside; each face
+/// has its own vertices, so that each vertex's normal is its face's.
+struct TriangleMesh {
+  std::vector<float> positions;  // x y z per vertex
+  std::vector<float> normals;    // unit, x y z per vertex
+  std::vector<uint32_t> indices;  // three per triangle
+
+  void AddVertex(const Eigen::Vector3d& p, const Eigen::Vector3d& n) {
+    for (int i = 0; i < 3; ++i) positions.push_back(float(p[i]));
+    for (int i = 0; i < 3; ++i) normals.push_back(float(n[i]));
+  }
+  uint32_t vertex_count() const { return uint32_t(positions.size() / 3); }
+};
+
+/// The body's shape as triangles: a box's 12, a cylinder's 32-sided prism, a mesh's own (at its
+/// scale), a sphere's or capsule's polytope; none for Shape::kNone.
+TriangleMesh MakeBodyTriangles(const Body& body);
+
 /// The volume of the body's solid shape in cubic metres: box, cylinder, sphere and capsule
 /// exactly; a mesh or a built-in shape drawn as a polytope, its bounding box's; a point, 0.
 double CalcVolume(const Body& body);

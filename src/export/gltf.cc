@@ -16,72 +16,6 @@
 namespace prs::exporting::internal {
 namespace {
 
-constexpr int kCylinderSegments = 32;
-
-// A triangle mesh in the object's frame.
-struct MeshData {
-  std::vector<float> positions;  // x y z per vertex
-  std::vector<float> normals;
-  std::vector<uint32_t> indices;
-
-  void AddVertex(const Eigen::Vector3d& p, const Eigen::Vector3d& n) {
-    for (int i = 0; i < 3; ++i) positions.push_back(float(p[i]));
-    for (int i = 0; i < 3; ++i) normals.push_back(float(n[i]));
-  }
-  uint32_t vertex_count() const { return uint32_t(positions.size() / 3); }
-};
-
-// Four vertices per face so that each face has its own normal.
-MeshData MakeBoxMesh(const Eigen::Vector3d& size) {
-  MeshData mesh;
-  const Eigen::Vector3d half = size / 2;
-  for (int axis = 0; axis < 3; ++axis) {
-    for (const double sign : {1.0, -1.0}) {
-      const Eigen::Vector3d n = sign * Eigen::Vector3d::Unit(axis);
-      const Eigen::Vector3d u = Eigen::Vector3d::Unit((axis + 1) % 3);
-      const Eigen::Vector3d v = n.cross(u);  // (u, v, n) right-handed: counter-clockwise outside
-      const uint32_t first = mesh.vertex_count();
-      for (const auto& [a, b] : {std::pair{-1, -1}, {1, -1}, {1, 1}, {-1, 1}}) {
-        mesh.AddVertex((n + a * u + b * v).cwiseProduct(half), n);
-      }
-      for (const uint32_t i : {0u, 1u, 2u, 0u, 2u, 3u}) mesh.indices.push_back(first + i);
-    }
-  }
-  return mesh;
-}
-
-void AddCylinderCap(MeshData& mesh, double radius, double z, double sign) {
-  const Eigen::Vector3d n(0, 0, sign);
-  const uint32_t centre = mesh.vertex_count();
-  mesh.AddVertex(Eigen::Vector3d(0, 0, z), n);
-  for (int i = 0; i < kCylinderSegments; ++i) {
-    const double angle = 2 * std::numbers::pi * i / kCylinderSegments;
-    mesh.AddVertex(Eigen::Vector3d(radius * std::cos(angle), radius * std::sin(angle), z), n);
-  }
-  for (uint32_t i = 0; i < kCylinderSegments; ++i) {
-    const uint32_t a = centre + 1 + i, b = centre + 1 + (i + 1) % kCylinderSegments;
-    mesh.indices.insert(mesh.indices.end(), {centre, sign > 0 ? a : b, sign > 0 ? b : a});
-  }
-}
-
-MeshData MakeCylinderMesh(double radius, double height) {
-  MeshData mesh;
-  const double h = height / 2;
-  for (int i = 0; i <= kCylinderSegments; ++i) {
-    const double angle = 2 * std::numbers::pi * i / kCylinderSegments;
-    const Eigen::Vector3d n(std::cos(angle), std::sin(angle), 0);
-    mesh.AddVertex(radius * n + Eigen::Vector3d(0, 0, -h), n);
-    mesh.AddVertex(radius * n + Eigen::Vector3d(0, 0, h), n);
-  }
-  for (uint32_t i = 0; i < kCylinderSegments; ++i) {
-    const uint32_t b0 = 2 * i, t0 = b0 + 1, b1 = b0 + 2, t1 = b0 + 3;
-    mesh.indices.insert(mesh.indices.end(), {b0, b1, t1, b0, t1, t0});
-  }
-  AddCylinderCap(mesh, radius, h, 1);
-  AddCylinderCap(mesh, radius, -h, -1);
-  return mesh;
-}
-
 // Appends `data` to the buffer as a new view and returns the view's index.
 template <typename T>
 int AddBufferView(tinygltf::Model& model, const std::vector<T>& data, int target) {
@@ -119,27 +53,8 @@ int AddMaterial(tinygltf::Model& model, const Body& body) {
   return int(model.materials.size() - 1);
 }
 
-// The mesh itself, scaled, in the body's frame; three vertices per triangle so that each
-// triangle has its own (flat) normal.
-MeshData MakeTriangleMesh(const shapes::MeshShape& shape, double scale) {
-  MeshData mesh;
-  const std::vector<Eigen::Vector3d>& p = shape.mesh.vertices_O;
-  for (const Eigen::Vector3i& t : shape.mesh.triangles) {
-    const Eigen::Vector3d n = (p[t[1]] - p[t[0]]).cross(p[t[2]] - p[t[0]]).normalized();
-    const uint32_t first = mesh.vertex_count();
-    for (int k = 0; k < 3; ++k) mesh.AddVertex(p[t[k]] * scale, n);
-    for (const uint32_t i : {0u, 1u, 2u}) mesh.indices.push_back(first + i);
-  }
-  return mesh;
-}
-
 int AddMesh(tinygltf::Model& model, const Body& body) {
-  // A sphere or capsule: its polytope (shapes/primitive.h), like any mesh.
-  const bool polytope = body.shape == Shape::kSphere || body.shape == Shape::kCapsule;
-  const MeshData data = body.shape == Shape::kMesh || polytope ? MakeTriangleMesh(*body.mesh, body.mesh_scale)
-                        : body.shape == Shape::kCylinder
-                            ? MakeCylinderMesh(body.cylinder_radius(), body.size.z())
-                            : MakeBoxMesh(body.size);
+  const TriangleMesh data = MakeBodyTriangles(body);
   const size_t n = data.vertex_count();
   tinygltf::Primitive primitive;
   primitive.mode = TINYGLTF_MODE_TRIANGLES;

@@ -13,6 +13,8 @@
 #include <string>
 #include <vector>
 
+#include "output/scene_json.h"
+#include "output/scene_json.h"
 #include "sampling/batch.h"
 #include "sampling/sampler.h"
 
@@ -88,8 +90,8 @@ struct EpisodeRecord {
   std::vector<std::pair<std::string, double>> features;
 };
 
-/// The features of EpisodeRecord::features for one scene.
-std::vector<std::pair<std::string, double>> CalcSceneFeatures(const lang::Scene& scene);
+/// The features of EpisodeRecord::features for one scene (output/scene_json.h).
+using output::CalcSceneFeatures;
 
 /// Called for each failing episode on the worker thread that ran it, after the scene was
 /// saved as `path_stem` + ".json": e.g. to render `path_stem` + ".png". It must be

@@ -65,22 +65,6 @@ std::string FormatRecordJson(const EpisodeRecord& record) {
   return line.dump(-1, ' ', false, nlohmann::ordered_json::error_handler_t::replace);
 }
 
-std::vector<std::pair<std::string, double>> CalcSceneFeatures(const lang::Scene& scene) {
-  std::vector<std::pair<std::string, double>> features;
-  features.reserve(4 * scene.objects.size());
-  for (size_t i = 0; i < scene.objects.size(); ++i) {
-    const lang::SceneObject& o = scene.objects[i];
-    const std::string name = o.DisplayName(static_cast<int>(i));
-    const Eigen::Matrix3d R_WO = o.R_WO.toRotationMatrix();
-    features.emplace_back(name + ".x", o.p_WO.x());
-    features.emplace_back(name + ".y", o.p_WO.y());
-    features.emplace_back(name + ".z", o.p_WO.z());
-    // The heading of the object's x axis in the world's xy plane.
-    features.emplace_back(name + ".yaw", std::atan2(R_WO(1, 0), R_WO(0, 0)));
-  }
-  return features;
-}
-
 std::string SceneOptionsOf(const std::vector<std::string>& scenario_words) {
   std::string options;
   for (size_t i = 1; i < scenario_words.size(); ++i) {

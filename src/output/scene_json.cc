@@ -389,4 +389,20 @@ void AppendSceneJson(const sampling::SampledScene& sampled, std::string& out) {
   out += "]}";
 }
 
+std::vector<std::pair<std::string, double>> CalcSceneFeatures(const lang::Scene& scene) {
+  std::vector<std::pair<std::string, double>> features;
+  features.reserve(4 * scene.objects.size());
+  for (size_t i = 0; i < scene.objects.size(); ++i) {
+    const lang::SceneObject& o = scene.objects[i];
+    const std::string name = o.DisplayName(static_cast<int>(i));
+    const Eigen::Matrix3d R_WO = o.R_WO.toRotationMatrix();
+    features.emplace_back(name + ".x", o.p_WO.x());
+    features.emplace_back(name + ".y", o.p_WO.y());
+    features.emplace_back(name + ".z", o.p_WO.z());
+    // The heading of the object's x axis in the world's xy plane.
+    features.emplace_back(name + ".yaw", std::atan2(R_WO(1, 0), R_WO(0, 0)));
+  }
+  return features;
+}
+
 }  // namespace prs::output

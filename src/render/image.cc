@@ -63,15 +63,26 @@ void WritePng(const Image& image, const std::string& path) {
   WritePngImage(png, path, image.rgb.data());
 }
 
-void WriteDepthPng(const DepthImage& depth, const std::string& path) {
+void WriteDepthPng(const DepthImage& depth, const std::string& path, double mm_per_unit) {
   std::vector<png_uint_16> millimetres(depth.depth_m.size());
   for (size_t i = 0; i < depth.depth_m.size(); ++i) {
-    const double mm = std::round(depth.depth_m[i] * 1000.0);
-    millimetres[i] = std::isfinite(mm) && mm > 0 && mm <= 65535 ? png_uint_16(mm) : 0;
+    const double units = std::round(depth.depth_m[i] * 1000.0 / mm_per_unit);
+    millimetres[i] = std::isfinite(units) && units > 0 && units <= 65535 ? png_uint_16(units) : 0;
   }
   // PNG_FORMAT_LINEAR_Y: 16-bit grey written as is (with a linear gamma note).
   png_image png = MakePngImage(depth.width, depth.height, PNG_FORMAT_LINEAR_Y);
   WritePngImage(png, path, millimetres.data());
+}
+
+void WriteMaskPng(const std::vector<uint8_t>& mask, int width, int height,
+                  const std::string& path) {
+  if (mask.size() != size_t(width) * size_t(height))
+    throw std::invalid_argument("WriteMaskPng: the mask is not width x height");
+  std::vector<uint8_t> grey(mask.size());
+  for (size_t i = 0; i < mask.size(); ++i) grey[i] = mask[i] ? 255 : 0;
+  png_image png = MakePngImage(width, height, PNG_FORMAT_GRAY);
+  png.flags |= PNG_IMAGE_FLAG_FAST;  // two values: fast compression loses little
+  WritePngImage(png, path, grey.data());
 }
 
 }  // namespace prs::render

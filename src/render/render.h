@@ -58,6 +58,12 @@ struct RenderObject {
   // drawn at the camera and for a view through it.
   double fovy_deg = 45.0;
   double aspect = 4.0 / 3.0;
+  /// The depths it sees (its `near` and `far`, metres): the clipping planes of a view through
+  /// it. The defaults, when it has none, are an RGB-D camera's range.
+  double near_m = 0.02, far_m = 50.0;
+  /// Of fovy_deg, aspect, near and far: those the object does not give as valid numbers (a
+  /// dataset needs them all of a camera it looks through).
+  std::vector<std::string> missing_view_properties;
 };
 
 /// A straight edge of the workspace outline (world frame, metres).
@@ -98,6 +104,9 @@ struct RenderOptions {
   int height = 480;
   View view;
   double camera_fovy_deg = 45.0;  // vertical field of view of the framings (overview, top, front)
+  /// Box edges, camera bodies' frusta, point markers, outlines and the caption: off for a
+  /// dataset's pictures, which show the solids alone.
+  bool decorations = true;
 };
 
 /// A pinhole camera pose: the point it looks from, its look axis and its up axis (world).
@@ -109,6 +118,29 @@ struct CameraPose {
   double far_m = 100.0;
 };
 
+/// Per pixel (rows from the top), the index in RenderScene::objects of the object drawn there,
+/// or kNoObject (the floor, the sky).
+struct ObjectIdImage {
+  int width = 0;
+  int height = 0;
+  std::vector<int32_t> object;
+};
+inline constexpr int32_t kNoObject = -1;
+
+/// One picture with what a dataset labels: its colours, its depth, which object each pixel
+/// shows, and the silhouettes of the objects asked for, each drawn alone (1 where it covers the
+/// pixel, whatever is in front of it).
+struct LabelledPicture {
+  Image rgb;
+  DepthImage depth;
+  ObjectIdImage visible;
+  std::vector<std::vector<uint8_t>> silhouettes;  // in the order asked for; width * height
+};
+
+/// The object a camera view looks from: by name (variable or "Class#index"), else by class
+/// when exactly one object has that class. Throws std::invalid_argument listing the cameras.
+const RenderObject& FindViewpointObject(const RenderScene& scene, const std::string& name);
+
 /// The pose a view is taken from. Throws std::invalid_argument when a camera view names no
 /// object of the scene (the message lists the scene's camera objects).
 CameraPose CalcViewPose(const RenderScene& scene, const RenderOptions& options);
@@ -116,7 +148,8 @@ CameraPose CalcViewPose(const RenderScene& scene, const RenderOptions& options);
 class Renderer {
  public:
   /// Creates the OpenGL context (EGL, Mesa's software rasteriser) and MuJoCo's render state.
-  /// Throws std::runtime_error with the reason when no context can be made.
+  /// Throws std::runtime_error with the reason when no context can be made. The context is
+  /// current only during each call, so a renderer may be used by one thread after another.
   Renderer();
   ~Renderer();
   Renderer(const Renderer&) = delete;
@@ -126,7 +159,18 @@ class Renderer {
   /// std::invalid_argument for an unknown camera name (see CalcViewPose).
   Image Render(const RenderScene& scene, const RenderOptions& options, DepthImage* depth = nullptr);
 
+  /// Renders one scene with its labels: the colour and depth picture of Render, then MuJoCo's
+  /// segmentation rendering (each object in one flat colour: no lighting, blending or
+  /// multisampling), once with every object and once per object of `silhouettes_of` (indices
+  /// into scene.objects) drawn alone. Throws as Render does, and std::out_of_range for an
+  /// index that is not an object's.
+  LabelledPicture RenderLabelled(const RenderScene& scene, const RenderOptions& options,
+                                 const std::vector<int>& silhouettes_of);
+
  private:
+  // With the context current: fills MuJoCo's scene for `options`: geoms, camera, lights.
+  CameraPose Prepare(const RenderScene& scene, const RenderOptions& options);
+
   struct State;
   std::unique_ptr<State> state_;
 };
@@ -144,8 +188,12 @@ Image ComposeGrid(const std::vector<Image>& tiles);
 
 /// Writes an 8-bit RGB PNG. Throws std::runtime_error naming the path when it cannot.
 void WritePng(const Image& image, const std::string& path);
-/// Writes a 16-bit grey PNG of depth in millimetres (0 where nothing was seen or beyond
-/// 65.535 m), the usual RGB-D convention. Throws std::runtime_error naming the path.
-void WriteDepthPng(const DepthImage& depth, const std::string& path);
+/// Writes a 16-bit grey PNG of depth in units of `mm_per_unit` millimetres (by default
+/// millimetres, the usual RGB-D convention; BOP's depth_scale), 0 where nothing was seen or
+/// beyond 65,535 units. Throws std::runtime_error naming the path.
+void WriteDepthPng(const DepthImage& depth, const std::string& path, double mm_per_unit = 1.0);
+/// Writes an 8-bit grey PNG of a mask (width * height values, row-major from the top): 255
+/// where it is not 0, else 0 (BOP's masks). Throws std::runtime_error naming the path.
+void WriteMaskPng(const std::vector<uint8_t>& mask, int width, int height, const std::string& path);
 
 }  // namespace prs::render

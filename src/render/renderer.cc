@@ -6,6 +6,7 @@
 #include <cmath>
 #include <limits>
 #include <stdexcept>
+#include <string>
 
 #include "render/context_key.h"
 #include "render/egl_context.h"
@@ -31,12 +32,16 @@ struct Renderer::State {
   std::vector<internal::MeshKey> meshes;  // the render model's, in asset order
   std::vector<std::shared_ptr<const shapes::MeshShape>> mesh_owners;  // keep `meshes` alive
 
+  // The context is current only inside each call (internal::EglContext::Scope), so that a
+  // renderer may move between threads (a dataset's pool).
   State() {
     mjv_defaultScene(&scene);
     mjr_defaultContext(&context);
     LoadModel();
+    egl.Release();
   }
   ~State() {
+    internal::EglContext::Scope current(egl);
     mjr_freeContext(&context);
     mjv_freeScene(&scene);
   }
@@ -170,10 +175,101 @@ void LinearizeDepth(std::vector<float>& depth, double near, double far) {
 Renderer::Renderer() : state_(std::make_unique<State>()) {}
 Renderer::~Renderer() = default;
 
-Image Renderer::Render(const RenderScene& scene, const RenderOptions& options, DepthImage* depth) {
+namespace {
+
+// The picture MuJoCo drew, read back top-down: RGB, and metric depth when `depth` is not null.
+Image ReadPicture(mjrContext& context, const RenderOptions& options, const CameraPose& pose,
+                  DepthImage* depth) {
+  const mjrRect viewport = {0, 0, options.width, options.height};
+  Image image{options.width, options.height,
+              std::vector<uint8_t>(size_t(options.width) * options.height * 3)};
+  std::vector<float> raw_depth(depth ? size_t(options.width) * options.height : 0);
+  mjr_readPixels(image.rgb.data(), depth ? raw_depth.data() : nullptr, viewport, &context);
+  FlipRows(image.rgb, options.width, options.height, 3);
+  if (depth) {
+    FlipRows(raw_depth, options.width, options.height, 1);
+    LinearizeDepth(raw_depth, pose.near_m, pose.far_m);
+    *depth = DepthImage{options.width, options.height, std::move(raw_depth)};
+  }
+  return image;
+}
+
+// mjRND_IDCOLOR draws geom g in the colour segid + 1, little-endian in (r, g, b); 0 is
+// nothing (the background, and the geoms whose segid is -1).
+ObjectIdImage DecodeObjectIds(const Image& picture, int objects) {
+  ObjectIdImage ids{picture.width, picture.height,
+                    std::vector<int32_t>(size_t(picture.width) * picture.height)};
+  for (size_t i = 0; i < ids.object.size(); ++i) {
+    const uint8_t* c = &picture.rgb[3 * i];
+    const int32_t id = int32_t(c[0] | c[1] << 8 | c[2] << 16) - 1;
+    if (id >= objects) throw std::logic_error("segmentation rendering gave an unknown colour");
+    ids.object[i] = id;
+  }
+  return ids;
+}
+
+// The rectangle of pixels an object's picture may cover (its bounding box's corners seen from
+// `pose`, a cylinder's or capsule's widened to its round radius, two pixels of margin), or the
+// whole picture when a corner is not in front of the near plane.
+struct PixelRect {
+  double x0, y0, x1, y1;
+  bool Overlaps(const PixelRect& o) const {
+    return x0 <= o.x1 && o.x0 <= x1 && y0 <= o.y1 && o.y0 <= y1;
+  }
+};
+
+PixelRect CalcPixelRect(const RenderObject& o, const CameraPose& pose, double fovy_deg, int width,
+                        int height) {
+  const PixelRect whole{-HUGE_VAL, -HUGE_VAL, HUGE_VAL, HUGE_VAL};
+  Eigen::Vector3d half = o.dimensions / 2;
+  if (o.shape == ObjectShape::kCylinder || o.shape == ObjectShape::kCapsule)
+    half.x() = half.y() = std::max(half.x(), half.y());
+  if (o.shape == ObjectShape::kCamera && half.isZero()) half = Eigen::Vector3d::Constant(0.025);
+  const Eigen::Matrix3d R_WO = o.R_WO.normalized().toRotationMatrix();
+  const Eigen::Vector3d right_W = pose.forward_W.cross(pose.up_W);
+  const double focal = height / 2.0 / std::tan(fovy_deg * M_PI / 360.0);
+  PixelRect rect{HUGE_VAL, HUGE_VAL, -HUGE_VAL, -HUGE_VAL};
+  for (int i = 0; i < 8; ++i) {
+    const Eigen::Vector3d sign(i & 1 ? 1 : -1, i & 2 ? 1 : -1, i & 4 ? 1 : -1);
+    const Eigen::Vector3d q = o.p_WO + R_WO * sign.cwiseProduct(half) - pose.p_WC;
+    const double depth = q.dot(pose.forward_W);
+    if (depth <= pose.near_m) return whole;
+    const double u = width / 2.0 + focal * q.dot(right_W) / depth;
+    const double v = height / 2.0 - focal * q.dot(pose.up_W) / depth;
+    rect = {std::min(rect.x0, u), std::min(rect.y0, v), std::max(rect.x1, u), std::max(rect.y1, v)};
+  }
+  return {rect.x0 - 2, rect.y0 - 2, rect.x1 + 2, rect.y1 + 2};
+}
+
+// The objects (places in `objects`) in groups whose pictures cannot overlap, greedily in order.
+std::vector<std::vector<size_t>> GroupApart(const RenderScene& scene,
+                                            const std::vector<int>& objects,
+                                            const CameraPose& pose, double fovy_deg, int width,
+                                            int height) {
+  std::vector<std::vector<size_t>> groups;
+  std::vector<std::vector<PixelRect>> rects;
+  for (size_t k = 0; k < objects.size(); ++k) {
+    const PixelRect rect =
+        CalcPixelRect(scene.objects[size_t(objects[k])], pose, fovy_deg, width, height);
+    size_t g = 0;
+    while (g < groups.size() && std::any_of(rects[g].begin(), rects[g].end(),
+                                            [&](const PixelRect& r) { return r.Overlaps(rect); }))
+      ++g;
+    if (g == groups.size()) {
+      groups.emplace_back();
+      rects.emplace_back();
+    }
+    groups[g].push_back(k);
+    rects[g].push_back(rect);
+  }
+  return groups;
+}
+
+}  // namespace
+
+CameraPose Renderer::Prepare(const RenderScene& scene, const RenderOptions& options) {
   const CameraPose pose = CalcViewPose(scene, options);  // may throw: check before drawing
   State& s = *state_;
-  s.egl.MakeCurrent();
   s.UseMeshesOf(scene);
   s.EnsureBuffer(options.width, options.height);
   // Remakes the scene: before updating it. The model's own geoms are its meshes.
@@ -185,26 +281,74 @@ Image Renderer::Render(const RenderScene& scene, const RenderOptions& options, D
   const RenderObject* viewpoint = options.view.kind == ViewKind::kCamera
                                       ? &FindViewpointObject(scene, options.view.camera_name)
                                       : nullptr;  // a camera does not see its own body
-  AddSceneGeoms(scene, viewpoint, extent, s.floor_texture, s.model, meshes, s.scene);
+  AddSceneGeoms(scene, viewpoint, extent, s.floor_texture, s.model, meshes, options.decorations,
+                s.scene);
   // Through a camera, its own field of view (the picture's size sets the aspect).
   const double fovy_deg = viewpoint ? viewpoint->fovy_deg : options.camera_fovy_deg;
   PlaceCameraAndLights(s.scene, s.context, pose, extent, fovy_deg);
+  return pose;
+}
+
+Image Renderer::Render(const RenderScene& scene, const RenderOptions& options, DepthImage* depth) {
+  internal::EglContext::Scope current(state_->egl);
+  const CameraPose pose = Prepare(scene, options);
+  State& s = *state_;
   const mjrRect viewport = {0, 0, options.width, options.height};
   mjr_render(viewport, &s.scene, &s.context);
-  if (!scene.caption.empty())
+  if (!scene.caption.empty() && options.decorations)
     mjr_overlay(mjFONT_NORMAL, mjGRID_TOPLEFT, viewport, scene.caption.c_str(), nullptr,
                 &s.context);
-  Image image{options.width, options.height,
-              std::vector<uint8_t>(size_t(options.width) * options.height * 3)};
-  std::vector<float> raw_depth(depth ? size_t(options.width) * options.height : 0);
-  mjr_readPixels(image.rgb.data(), depth ? raw_depth.data() : nullptr, viewport, &s.context);
-  FlipRows(image.rgb, options.width, options.height, 3);
-  if (depth) {
-    FlipRows(raw_depth, options.width, options.height, 1);
-    LinearizeDepth(raw_depth, pose.near_m, pose.far_m);
-    *depth = DepthImage{options.width, options.height, std::move(raw_depth)};
+  return ReadPicture(s.context, options, pose, depth);
+}
+
+LabelledPicture Renderer::RenderLabelled(const RenderScene& scene, const RenderOptions& options,
+                                         const std::vector<int>& silhouettes_of) {
+  for (const int i : silhouettes_of) {
+    if (i < 0 || size_t(i) >= scene.objects.size())
+      throw std::out_of_range("RenderLabelled: no object " + std::to_string(i));
   }
-  return image;
+  internal::EglContext::Scope current(state_->egl);
+  const CameraPose pose = Prepare(scene, options);
+  State& s = *state_;
+  const mjrRect viewport = {0, 0, options.width, options.height};
+  LabelledPicture out;
+  mjr_render(viewport, &s.scene, &s.context);
+  out.rgb = ReadPicture(s.context, options, pose, &out.depth);
+  const int objects = int(scene.objects.size());
+  s.scene.flags[mjRND_SEGMENT] = 1;
+  s.scene.flags[mjRND_IDCOLOR] = 1;
+  mjr_render(viewport, &s.scene, &s.context);
+  out.visible = DecodeObjectIds(ReadPicture(s.context, options, pose, nullptr), objects);
+  // Each object alone: only its geoms in the scene. Objects whose pictures cannot overlap
+  // share a pass (GroupApart): none can hide another.
+  const std::vector<mjvGeom> all(s.scene.geoms, s.scene.geoms + s.scene.ngeom);
+  out.silhouettes.assign(silhouettes_of.size(),
+                         std::vector<uint8_t>(size_t(options.width) * options.height, 0));
+  const double fovy_deg = options.view.kind == ViewKind::kCamera
+                              ? FindViewpointObject(scene, options.view.camera_name).fovy_deg
+                              : options.camera_fovy_deg;
+  for (const std::vector<size_t>& group :
+       GroupApart(scene, silhouettes_of, pose, fovy_deg, options.width, options.height)) {
+    s.scene.ngeom = 0;
+    for (const mjvGeom& g : all) {
+      for (const size_t k : group) {
+        if (g.segid == silhouettes_of[k]) s.scene.geoms[s.scene.ngeom++] = g;
+      }
+    }
+    if (s.scene.ngeom == 0) continue;
+    mjr_render(viewport, &s.scene, &s.context);
+    const ObjectIdImage alone =
+        DecodeObjectIds(ReadPicture(s.context, options, pose, nullptr), objects);
+    for (const size_t k : group) {
+      std::vector<uint8_t>& mask = out.silhouettes[k];
+      for (size_t p = 0; p < mask.size(); ++p) mask[p] = alone.object[p] == silhouettes_of[k];
+    }
+  }
+  std::copy(all.begin(), all.end(), s.scene.geoms);
+  s.scene.ngeom = int(all.size());
+  s.scene.flags[mjRND_SEGMENT] = 0;
+  s.scene.flags[mjRND_IDCOLOR] = 0;
+  return out;
 }
 
 // --- ModelRenderer: a simulation's own model and cameras ---

@@ -42,11 +42,12 @@ void AddLine(mjvScene& out, const Eigen::Vector3d& a_W, const Eigen::Vector3d& b
 
 // A camera: its body, and a wire frustum along its look axis (local +y, up +z), opening at the
 // camera's own field of view, so that the direction it faces and what it sees show.
-void AddCamera(mjvScene& out, const RenderObject& camera) {
+void AddCamera(mjvScene& out, const RenderObject& camera, bool frustum_too) {
   const Eigen::Matrix3d R_WO = camera.R_WO.toRotationMatrix();
   Eigen::Vector3d body = camera.dimensions;
   if (body.isZero()) body = Eigen::Vector3d::Constant(0.05);
   AddSolid(out, mjGEOM_BOX, body / 2, camera.p_WO, R_WO, camera.color);
+  if (!frustum_too) return;
   const double half_z = kFrustumLength_m * std::tan(camera.fovy_deg * M_PI / 360.0);
   const double half_x = half_z * camera.aspect;
   const Rgba frustum = {0.95f, 0.6f, 0.1f, 1.0f};
@@ -100,9 +101,11 @@ void AddMesh(mjvScene& out, const RenderObject& o, const Eigen::Matrix3d& R_WO,
   geom.shininess = 0.3f;
 }
 
+// `edge_width_m` 0: no box edges, and a camera without its frustum (a dataset's pictures).
 void AddObject(mjvScene& out, const RenderObject& o, double edge_width_m,
                const std::vector<MeshDrawing>& meshes) {
   const Eigen::Matrix3d R_WO = o.R_WO.toRotationMatrix();
+  const bool decorations = edge_width_m > 0;
   switch (o.shape) {
     case ObjectShape::kMesh:
       for (const MeshDrawing& drawing : meshes) {
@@ -112,6 +115,7 @@ void AddObject(mjvScene& out, const RenderObject& o, double edge_width_m,
       [[fallthrough]];  // not in the model: its box
     case ObjectShape::kBox:
       AddSolid(out, mjGEOM_BOX, o.dimensions / 2, o.p_WO, R_WO, o.color);
+      if (!decorations) return;
       return AddBoxEdges(out, o, R_WO, std::min(edge_width_m, 0.05 * o.dimensions.minCoeff()));
     case ObjectShape::kCylinder: {
       // MuJoCo has no elliptic cylinder: the radius is the mean of the half width and length.
@@ -131,9 +135,10 @@ void AddObject(mjvScene& out, const RenderObject& o, double edge_width_m,
                       R_WO, o.color);
     }
     case ObjectShape::kPoint:
+      if (!decorations) return;  // a marker, not a solid
       return AddSolid(out, mjGEOM_SPHERE, Eigen::Vector3d::Constant(0.02), o.p_WO, R_WO, o.color);
     case ObjectShape::kCamera:
-      return AddCamera(out, o);
+      return AddCamera(out, o, decorations);
   }
 }
 
@@ -180,12 +185,18 @@ int CountSceneGeoms(const RenderScene& scene) {
 
 void AddSceneGeoms(const RenderScene& scene, const RenderObject* viewpoint,
                    const SceneExtent& extent, int floor_texture, const mjModel* model,
-                   const std::vector<MeshDrawing>& meshes, mjvScene& out) {
+                   const std::vector<MeshDrawing>& meshes, bool decorations, mjvScene& out) {
   AddFloor(out, extent, floor_texture, model);
+  out.geoms[out.ngeom - 1].segid = -1;
   const double line_width = std::clamp(0.003 * extent.radius_m, 0.0015, 0.015);
-  for (const RenderObject& o : scene.objects) {
-    if (&o != viewpoint) AddObject(out, o, line_width / 2, meshes);
+  for (size_t i = 0; i < scene.objects.size(); ++i) {
+    if (&scene.objects[i] == viewpoint) continue;
+    const int first = out.ngeom;
+    AddObject(out, scene.objects[i], decorations ? line_width / 2 : 0, meshes);
+    for (int g = first; g < out.ngeom; ++g) out.geoms[g].segid = int(i);
   }
+  if (!decorations) return;
+  const int first_decoration = out.ngeom;
   for (const auto& [a_W, b_W] : scene.workspace_edges)
     AddLine(out, a_W, b_W, line_width, {0.3f, 0.38f, 0.55f, 1.0f});
   // Regions in bright colours, thinner than the workspace: positions green, views orange.
@@ -195,6 +206,7 @@ void AddSceneGeoms(const RenderScene& scene, const RenderObject* viewpoint,
       if ((b_W - a_W).norm() > 1e-9) AddLine(out, a_W, b_W, line_width * 0.6, color);
     }
   }
+  for (int g = first_decoration; g < out.ngeom; ++g) out.geoms[g].segid = -1;
 }
 
 }  // namespace prs::render

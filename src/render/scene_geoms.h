@@ -27,19 +27,18 @@ struct SceneExtent {
 
 SceneExtent CalcSceneExtent(const RenderScene& scene);
 
-/// The object a camera view looks from: by name (variable or "Class#index"), else by class
-/// when exactly one object has that class. Throws std::invalid_argument listing the cameras.
-const RenderObject& FindViewpointObject(const RenderScene& scene, const std::string& name);
-
 /// How many geoms AddSceneGeoms adds for `scene`.
 int CountSceneGeoms(const RenderScene& scene);
 
 /// Appends the scene's geoms to `out` (which must have room: CountSceneGeoms), except those of
 /// `viewpoint` (the camera looked through; may be null). The floor uses texture
 /// `floor_texture` of `model`; camera frusta open at each camera's own field of view; mesh
-/// objects are drawn from `meshes` (an object whose mesh is not among them as its box).
+/// objects are drawn from `meshes` (an object whose mesh is not among them as its box). Each
+/// geom of object i has segid i (MuJoCo's segmentation rendering); the floor and the outlines
+/// -1. Without `decorations` (a dataset's pictures): the solids alone, with no box edges, no
+/// camera frusta, no point markers and no outlines.
 void AddSceneGeoms(const RenderScene& scene, const RenderObject* viewpoint,
                    const SceneExtent& extent, int floor_texture, const mjModel* model,
-                   const std::vector<MeshDrawing>& meshes, mjvScene& out);
+                   const std::vector<MeshDrawing>& meshes, bool decorations, mjvScene& out);
 
 }  // namespace prs::render

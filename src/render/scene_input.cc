@@ -30,6 +30,7 @@ struct DrawProperties {
   std::optional<Rgba> color;
   std::string color_text;  // what the scene said, for the unknown-colour note
   std::optional<double> fovy_deg, aspect;  // a camera's view, when given as numbers
+  std::optional<double> near_m, far_m;     // and the depths it sees
 };
 
 ObjectShape ClassifyShape(const RenderObject& object, const DrawProperties& properties) {
@@ -58,6 +59,21 @@ void ApplyProperties(const DrawProperties& properties, RenderObject& object,
     object.fovy_deg = *properties.fovy_deg;
   if (properties.aspect && *properties.aspect > 0 && std::isfinite(*properties.aspect))
     object.aspect = *properties.aspect;
+  else
+    object.missing_view_properties.push_back("aspect");
+  if (!(properties.fovy_deg && *properties.fovy_deg > 0 && *properties.fovy_deg < 180))
+    object.missing_view_properties.insert(object.missing_view_properties.begin(), "fovy_deg");
+  const bool depths = properties.near_m && properties.far_m && *properties.near_m > 0 &&
+                      *properties.far_m > *properties.near_m && std::isfinite(*properties.far_m);
+  if (depths) {
+    object.near_m = *properties.near_m;
+    object.far_m = *properties.far_m;
+  } else {
+    if (!(properties.near_m && *properties.near_m > 0)) object.missing_view_properties.push_back("near");
+    if (!(properties.far_m && std::isfinite(*properties.far_m) &&
+          *properties.far_m > properties.near_m.value_or(0)))
+      object.missing_view_properties.push_back("far");
+  }
 }
 
 std::optional<Rgba> ToRenderColor(const std::optional<exporting::Rgba>& c) {
@@ -83,6 +99,8 @@ DrawProperties ReadDrawProperties(const lang::SceneObject& source) {
     }
     if (name == "fovy_deg" && value.Is<double>()) properties.fovy_deg = value.As<double>();
     if (name == "aspect" && value.Is<double>()) properties.aspect = value.As<double>();
+    if (name == "near" && value.Is<double>()) properties.near_m = value.As<double>();
+    if (name == "far" && value.Is<double>()) properties.far_m = value.As<double>();
   }
   return properties;
 }
@@ -152,6 +170,8 @@ DrawProperties ReadDrawProperties(const nlohmann::json& object) {
     properties.fovy_deg = json["fovy_deg"].get<double>();
   if (json.contains("aspect") && json["aspect"].is_number())
     properties.aspect = json["aspect"].get<double>();
+  if (json.contains("near") && json["near"].is_number()) properties.near_m = json["near"].get<double>();
+  if (json.contains("far") && json["far"].is_number()) properties.far_m = json["far"].get<double>();
   if (json.contains("color")) {
     properties.color = ParseColorJson(json["color"]);
     // For the "unknown color" note; a nested value is not dumped (it may be arbitrarily deep).

@@ -85,8 +85,8 @@ CameraPose CalcCameraObjectPose(const RenderObject& camera) {
   pose.p_WC = camera.p_WO;
   pose.forward_W = R_WO.col(1);
   pose.up_W = R_WO.col(2);
-  pose.near_m = 0.02;  // like an RGB-D camera's range clip
-  pose.far_m = 50.0;
+  pose.near_m = camera.near_m;  // its own range (an RGB-D camera's by default)
+  pose.far_m = camera.far_m;
   return pose;
 }
 

@@ -1,0 +1,290 @@
+// `prs dataset`: scenes seen through their cameras, with exact labels, as a BOP dataset and
+// COCO annotations (src/dataset, docs/dataset.md). Scenes are sampled and rendered on worker
+// threads and added in index order; the dataset is written to DIR.partial and renamed to DIR
+// when complete.
+#include <fmt/format.h>
+
+#include <atomic>
+#include <chrono>
+#include <map>
+#include <mutex>
+#include <thread>
+
+#include "cli/commands.h"
+#include "cli/common.h"
+#include "cli/design_option.h"
+#include "cli/interrupt.h"
+#include "cli/progress.h"
+#include "dataset/dataset.h"
+#include "output/scene_reader.h"
+#include "render/scene_input.h"
+#include "sampling/batch.h"
+
+namespace prs::cli {
+namespace {
+
+struct DatasetArgs {
+  ScenarioArgs scenario;
+  SamplingArgs sampling;
+  DesignArgs design;
+  SceneRangeArgs range;
+  std::string output;
+  std::vector<std::string> cameras;
+  std::string size;  // WxH; empty: each camera's aspect at 640 wide
+  std::string format = "both";
+  std::vector<std::string> labels;
+  bool quiet = false;
+};
+
+// The classes objects get ids by: the program's, in its class table's order (built-ins first),
+// so that every run and shard of one program agrees; the abstract points are left out.
+std::vector<std::string> ListClassIds(const lang::CompiledProgram& program) {
+  std::vector<std::string> names;
+  for (const auto& info : program.classes) {
+    if (info->name != "Point3D" && info->name != "OrientedPoint3D") names.push_back(info->name);
+  }
+  return names;
+}
+
+// The checks a usage error reports before anything is written; "" when all is well.
+std::string CheckArgs(const DatasetArgs& args, dataset::DatasetOptions& options) {
+  if (!args.size.empty()) {
+    try {
+      std::tie(options.width, options.height) = render::ParseSize(args.size);
+    } catch (const std::invalid_argument& error) {
+      return std::string("--size: ") + error.what();
+    }
+  }
+  options.bop = args.format != "coco";
+  options.coco = args.format != "bop";
+  options.labels = args.labels;
+  options.cameras = args.cameras;
+  options.dir = args.output;
+  return "";
+}
+
+std::string NoCameraMessage(const std::string& where) {
+  return where +
+         " has no camera object to look through: add one (examples/model.prs's Camera class "
+         "has the fovy_deg, aspect, near and far a dataset needs) or name an object with "
+         "--camera NAME";
+}
+
+class DatasetRun {
+ public:
+  explicit DatasetRun(const DatasetArgs& args)
+      : args_(args), progress_(args.range.count, !args.quiet && IsStderrTerminal()) {}
+
+  int Run() {
+    const auto begin = std::chrono::steady_clock::now();
+    dataset::DatasetOptions options;
+    if (const std::string problem = CheckArgs(args_, options); !problem.empty()) {
+      PrintError(problem);
+      return kExitUsage;
+    }
+    int64_t images = 0;
+    std::unique_ptr<dataset::DatasetWriter> writer;
+    try {
+      const int code = IsScenesFile(args_.scenario.file) ? RunOnFile(options, writer, images)
+                                                           : RunOnProgram(options, writer, images);
+      if (code != kExitSuccess) return code;
+    } catch (const sampling::BatchCancelled&) {
+      progress_.Erase();
+      PrintNote(fmt::format("interrupted; {} of the dataset are in {}",
+                            FormatCount(done_, "scene"), writer->partial_dir()));
+      return kExitInterruptedBase + interrupt_.signal_number();
+    } catch (const lang::ScenarioError& error) {
+      progress_.Erase();
+      const int code = ReportScenarioError(error, program_->sources);
+      if (writer) PrintNote(DescribePartial(*writer));
+      return code;
+    } catch (const std::invalid_argument& error) {  // a camera, a label, a size
+      progress_.Erase();
+      PrintError(error.what());
+      if (writer) PrintNote(DescribePartial(*writer));
+      return kExitUsage;
+    } catch (const std::exception& error) {  // DIR, a file, no OpenGL
+      progress_.Erase();
+      PrintError(error.what());
+      if (writer) PrintNote(DescribePartial(*writer));
+      return kExitScenarioError;
+    }
+    progress_.Erase();
+    const double seconds =
+        std::chrono::duration<double>(std::chrono::steady_clock::now() - begin).count();
+    if (!args_.quiet) {
+      PrintNote(fmt::format("{} of {} ({}) in {:.2f} s, {:.1f} images/s, to {}",
+                            FormatCount(images, "labelled image"), FormatCount(done_, "scene"),
+                            args_.format == "both" ? "BOP and COCO" : args_.format == "bop" ? "BOP" : "COCO",
+                            seconds, seconds > 0 ? double(images) / seconds : 0.0, args_.output));
+    }
+    return kExitSuccess;
+  }
+
+ private:
+  std::string DescribePartial(const dataset::DatasetWriter& writer) const {
+    return fmt::format("the {} before it are in {}", FormatCount(done_, "scene"),
+                       writer.partial_dir());
+  }
+
+  int RunOnProgram(dataset::DatasetOptions& options,
+                   std::unique_ptr<dataset::DatasetWriter>& writer, int64_t& images) {
+    program_ = CompileScenario(args_.scenario);
+    if (!program_) return kExitScenarioError;
+    sampling::BatchOptions batch =
+        MakeBatchOptions(args_.sampling, args_.range.count, interrupt_.flag());
+    batch.start = args_.range.start;
+    if (!PrepareDesign(args_.design, *program_, args_.range, batch.sample, &design_)) {
+      return kExitUsage;
+    }
+    if (options.cameras.empty()) {
+      // Scene 0 of the seed names the cameras, whatever the range: shards agree.
+      sampling::SceneSampler sampler(*program_, batch.sample);
+      const sampling::SampledScene first = sampler.Sample(batch.seed, 0);
+      options.cameras = dataset::ListCameraObjects(render::MakeRenderScene(first.scene));
+      if (options.cameras.empty()) {
+        PrintError(NoCameraMessage(fmt::format("scene 0 of seed {}", batch.seed)));
+        return kExitUsage;
+      }
+    }
+    writer = std::make_unique<dataset::DatasetWriter>(options, ListClassIds(*program_));
+    std::mutex mutex;
+    std::map<uint64_t, std::shared_ptr<dataset::SceneLabels>> rendered;
+    sampling::BatchCallbacks callbacks;
+    dataset::DatasetWriter& w = *writer;
+    callbacks.prepare = [&](sampling::BatchScene& scene) {
+      auto labels = w.RenderScene(scene.sampled, scene.sampled.index);
+      std::lock_guard<std::mutex> lock(mutex);
+      rendered[scene.sampled.index] = std::move(labels);
+    };
+    callbacks.consume = [&](sampling::BatchScene&& scene) {
+      std::shared_ptr<dataset::SceneLabels> labels;
+      {
+        std::lock_guard<std::mutex> lock(mutex);
+        auto it = rendered.find(scene.sampled.index);
+        labels = std::move(it->second);
+        rendered.erase(it);
+      }
+      w.Add(*labels);
+      progress_.Update(++done_);
+    };
+    progress_.Attach(batch, callbacks);
+    sampling::SampleBatch(*program_, batch, callbacks);
+    images = w.Finish();
+    return kExitSuccess;
+  }
+
+  int RunOnFile(dataset::DatasetOptions& options, std::unique_ptr<dataset::DatasetWriter>& writer,
+                int64_t& images) {
+    const auto lines = ReadLines(args_.scenario.file);
+    if (!lines) return kExitScenarioError;
+    // The scenes of the range, read on this thread (the reader is not thread-safe).
+    output::SceneReader reader;
+    std::vector<sampling::SampledScene> scenes;
+    std::vector<std::string> class_ids;
+    uint64_t at = 0;
+    for (size_t i = 0; i < lines->size() && int64_t(scenes.size()) < args_.range.count; ++i) {
+      if (IsBlankLine((*lines)[i])) continue;
+      if (at++ < args_.range.start) continue;
+      try {
+        scenes.push_back(reader.Read((*lines)[i]));
+      } catch (const std::invalid_argument& error) {
+        PrintError(fmt::format("{}:{}: {}", args_.scenario.file, i + 1, error.what()));
+        return kExitScenarioError;
+      }
+      for (const lang::SceneObject& o : scenes.back().scene.objects) {
+        const std::string name = o.cls ? o.cls->name : "Object";
+        if (std::find(class_ids.begin(), class_ids.end(), name) == class_ids.end())
+          class_ids.push_back(name);
+      }
+    }
+    if (scenes.empty()) {
+      PrintError(fmt::format("{} has no scene at index {}", args_.scenario.file, args_.range.start));
+      return kExitScenarioError;
+    }
+    if (options.cameras.empty()) {
+      options.cameras = dataset::ListCameraObjects(render::MakeRenderScene(scenes[0].scene));
+      if (options.cameras.empty()) {
+        PrintError(NoCameraMessage(args_.scenario.file + "'s first scene"));
+        return kExitUsage;
+      }
+    }
+    writer = std::make_unique<dataset::DatasetWriter>(options, class_ids);
+    std::vector<std::shared_ptr<dataset::SceneLabels>> rendered(scenes.size());
+    std::atomic<size_t> next{0};
+    std::exception_ptr failure;
+    std::mutex failure_mutex;
+    const auto work = [&] {
+      for (size_t i = next++; i < scenes.size(); i = next++) {
+        try {
+          // Images are numbered by the scene's place in the file (its line keeps its own seed
+          // and index), so that a file of scenes `prs sample --like` drew is numbered densely.
+          rendered[i] = writer->RenderScene(scenes[i], args_.range.start + i);
+        } catch (...) {
+          std::lock_guard<std::mutex> lock(failure_mutex);
+          if (!failure) failure = std::current_exception();
+          next = scenes.size();
+        }
+      }
+    };
+    std::vector<std::thread> threads;
+    const int count = std::max(1, std::min<int>(args_.sampling.threads, int(scenes.size())));
+    for (int t = 1; t < count; ++t) threads.emplace_back(work);
+    work();
+    for (std::thread& t : threads) t.join();
+    for (size_t i = 0; i < scenes.size() && rendered[i]; ++i) {
+      writer->Add(*rendered[i]);
+      ++done_;
+    }
+    if (failure) std::rethrow_exception(failure);
+    images = writer->Finish();
+    return kExitSuccess;
+  }
+
+  const DatasetArgs& args_;
+  std::unique_ptr<lang::CompiledProgram> program_;
+  std::unique_ptr<search::Design> design_;
+  InterruptWatch interrupt_;
+  ProgressBar progress_;
+  int64_t done_ = 0;
+};
+
+}  // namespace
+
+CommandRunner ConfigureDatasetCommand(CLI::App& command) {
+  auto args = std::make_shared<DatasetArgs>();
+  AddScenarioOptions(command, args->scenario);
+  AddSceneRangeOptions(command, args->range, 1);
+  command
+      .add_option("-o,--output", args->output,
+                  "write the dataset to DIR (via DIR.partial, renamed when complete); DIR must "
+                  "not exist or be empty")
+      ->type_name("DIR")
+      ->required()
+      ->check(NonEmptyPath());
+  command
+      .add_option("--camera", args->cameras,
+                  "look through this camera object (repeatable; default: every camera object)")
+      ->type_name("NAME");
+  command
+      .add_option("--size", args->size,
+                  "picture size (default: each camera's aspect at 640 pixels wide)")
+      ->type_name("WxH");
+  command.add_option("--format", args->format, "what to write: BOP, COCO or both")
+      ->type_name("bop|coco|both")
+      ->check(CLI::IsMember({"bop", "coco", "both"}))
+      ->capture_default_str();
+  command
+      .add_option("--label", args->labels,
+                  "label only objects of this class (repeatable; default: every class)")
+      ->type_name("CLASS");
+  AddSamplingOptions(command, args->sampling);
+  AddDesignOption(command, args->design);
+  command.add_flag("-q,--quiet", args->quiet, "no summary on stderr");
+  return [args]() -> int {
+    if (!CheckSceneRange(args->range)) return kExitUsage;
+    return DatasetRun(*args).Run();
+  };
+}
+
+}  // namespace prs::cli

@@ -1,0 +1,136 @@
+// End-to-end tests of `prs dataset`: identical bytes for 1 and 2 threads and for a split of the
+// index range, COCO ids unique across shards, a scenes file giving the program's own images,
+// scene lines that prs reads back, and located errors that leave nothing but DIR.partial.
+#include <map>
+#include <nlohmann/json.hpp>
+#include <set>
+
+#include "cli/test/prs_test_fixture.h"
+
+namespace prs::cli {
+namespace {
+
+// Every file under `root`, by path relative to it, with its bytes.
+std::map<std::string, std::string> ReadTree(const fs::path& root) {
+  std::map<std::string, std::string> files;
+  for (const auto& entry : fs::recursive_directory_iterator(root)) {
+    if (entry.is_regular_file())
+      files[fs::relative(entry.path(), root).string()] = ReadText(entry.path());
+  }
+  return files;
+}
+
+class DatasetCommandTest : public PrsTest {
+ protected:
+  Result Dataset(const std::string& out, std::vector<std::string> more) {
+    std::vector<std::string> args = {"dataset", Example("table_cube.prs"), "-s", "1",
+                                     "--size", "160x120", "-o", (dir_ / out).string()};
+    args.insert(args.end(), more.begin(), more.end());
+    return Run(args);
+  }
+};
+
+TEST_F(DatasetCommandTest, SameBytesForAnyThreadCountAndSplit) {
+  Result r = Dataset("one", {"-n", "6"});
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  EXPECT_NE(r.err.find("6 labelled images of 6 scenes (BOP and COCO)"), std::string::npos) << r.err;
+  ASSERT_EQ(Dataset("two", {"-n", "6", "--threads", "2"}).exit_code, 0);
+  const auto one = ReadTree(dir_ / "one"), two = ReadTree(dir_ / "two");
+  EXPECT_GT(one.size(), 6u * 14);  // rgb, depth and 2 masks for each of 6 objects, per image
+  EXPECT_TRUE(one == two);
+  // Scenes 3..5 alone: the same pictures and masks as in the whole run.
+  ASSERT_EQ(Dataset("a", {"-n", "3"}).exit_code, 0);
+  ASSERT_EQ(Dataset("b", {"-n", "3", "--start", "3"}).exit_code, 0);
+  const auto b = ReadTree(dir_ / "b");
+  int pictures = 0;
+  for (const auto& [path, bytes] : b) {
+    if (path.ends_with(".png")) {
+      EXPECT_EQ(bytes, one.at(path)) << path;
+      ++pictures;
+    }
+  }
+  EXPECT_GE(pictures, 3 * 14);
+  EXPECT_FALSE(b.count("train_pbr/000000/rgb/000000.png"));
+  // COCO annotation ids and image ids: unique across the two shards.
+  std::set<int64_t> annotations, images;
+  size_t total = 0;
+  for (const char* shard : {"a", "b"}) {
+    const auto coco = nlohmann::json::parse(ReadText(dir_ / shard / "train_pbr/000000/annotations.json"));
+    for (const auto& a : coco["annotations"]) annotations.insert(a["id"].get<int64_t>()), ++total;
+    for (const auto& i : coco["images"]) images.insert(i["id"].get<int64_t>());
+  }
+  EXPECT_EQ(annotations.size(), total);
+  EXPECT_EQ(images, (std::set<int64_t>{0, 1, 2, 3, 4, 5}));
+}
+
+TEST_F(DatasetCommandTest, AScenesFileGivesTheProgramsImagesAndItsLinesReadBack) {
+  ASSERT_EQ(Dataset("ds", {"-n", "2"}).exit_code, 0);
+  ASSERT_EQ(Run({"sample", Example("table_cube.prs"), "-s", "1", "-n", "2", "-o",
+                 (dir_ / "scenes.jsonl").string()})
+                .exit_code,
+            0);
+  const Result r = Run({"dataset", (dir_ / "scenes.jsonl").string(), "-n", "2", "--size",
+                        "160x120", "-o", (dir_ / "from_file").string()});
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  for (const char* picture : {"rgb/000001.png", "mask_visib/000001_000005.png", "depth/000000.png"}) {
+    const std::string bytes = ReadText(dir_ / "from_file/train_pbr/000000" / picture);
+    EXPECT_FALSE(bytes.empty()) << picture;
+    EXPECT_TRUE(bytes == ReadText(dir_ / "ds/train_pbr/000000" / picture)) << picture;
+  }
+  // Each scene's line, with its images and features, is a scene prs reads.
+  const std::string lines = (dir_ / "ds/train_pbr/000000/scenes.jsonl").string();
+  const auto first = nlohmann::json::parse(ReadText(lines).substr(0, ReadText(lines).find('\n')));
+  EXPECT_EQ(first["seed"], 1);
+  EXPECT_EQ(first["images"][0]["im_id"], 0);
+  EXPECT_TRUE(first["features"].contains("t.x"));
+  const Result again = Run({"export", lines, "--format", "mjcf", "-o", (dir_ / "exported").string()});
+  EXPECT_EQ(again.exit_code, 0) << again.err;
+}
+
+TEST_F(DatasetCommandTest, BadInputIsRefusedWithAReasonAndNothingHalfWritten) {
+  Result r = Dataset("ds", {"--camera", "nope"});
+  EXPECT_EQ(r.exit_code, 2);
+  EXPECT_NE(r.err.find("no object named 'nope'"), std::string::npos) << r.err;
+  EXPECT_FALSE(fs::exists(dir_ / "ds"));
+  EXPECT_TRUE(fs::exists(dir_ / "ds.partial"));
+  EXPECT_NE(r.err.find("ds.partial"), std::string::npos) << r.err;
+
+  r = Dataset("sized", {"--size", "0x0"});
+  EXPECT_EQ(r.exit_code, 2);
+  EXPECT_NE(r.err.find("--size"), std::string::npos) << r.err;
+  EXPECT_FALSE(fs::exists(dir_ / "sized.partial"));
+
+  // A directory that holds anything is never written into.
+  fs::create_directories(dir_ / "taken");
+  Write("taken/notes.txt", "mine");
+  r = Dataset("taken", {});
+  EXPECT_EQ(r.exit_code, 1);
+  EXPECT_NE(r.err.find("is not an empty directory"), std::string::npos) << r.err;
+  EXPECT_EQ(ReadText(dir_ / "taken/notes.txt"), "mine");
+
+  // An earlier run's DIR.partial is kept, not overwritten.
+  r = Dataset("ds", {});
+  EXPECT_EQ(r.exit_code, 1);
+  EXPECT_NE(r.err.find("earlier run"), std::string::npos) << r.err;
+
+  r = Dataset("labelled", {"--label", "Chair"});
+  EXPECT_EQ(r.exit_code, 2);
+  EXPECT_NE(r.err.find("no object of class Chair"), std::string::npos) << r.err;
+
+  const std::string no_depths = Write("no_depths.prs",
+                                      "class Camera:\n    fovy_deg: 40\n    aspect: 1.5\n"
+                                      "b = Object at V3D(0, 0, 0.1)\n"
+                                      "Camera at V3D(0, 0, 2), facing V3D(0, 0, -1)\n");
+  r = Run({"dataset", no_depths, "-o", (dir_ / "d").string()});
+  EXPECT_EQ(r.exit_code, 2);
+  EXPECT_NE(r.err.find("has no near and far"), std::string::npos) << r.err;
+
+  const std::string no_camera = Write("no_camera.prs", "b = Object at V3D(0, 0, 0.1)\n");
+  r = Run({"dataset", no_camera, "-o", (dir_ / "e").string()});
+  EXPECT_EQ(r.exit_code, 2);
+  EXPECT_NE(r.err.find("no camera object"), std::string::npos) << r.err;
+  EXPECT_FALSE(fs::exists(dir_ / "e.partial"));
+}
+
+}  // namespace
+}  // namespace prs::cli
