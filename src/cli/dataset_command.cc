@@ -84,6 +84,7 @@ class DatasetRun {
     }
     int64_t images = 0;
     std::unique_ptr<dataset::DatasetWriter> writer;
+    // Sampling's share is what the stages leave of the run (exact on one thread).
     try {
       const int code = IsScenesFile(args_.scenario.file) ? RunOnFile(options, writer, images)
                                                            : RunOnProgram(options, writer, images);
@@ -117,6 +118,13 @@ class DatasetRun {
                             FormatCount(images, "labelled image"), FormatCount(done_, "scene"),
                             args_.format == "both" ? "BOP and COCO" : args_.format == "bop" ? "BOP" : "COCO",
                             seconds, seconds > 0 ? double(images) / seconds : 0.0, args_.output));
+      const dataset::StageSeconds stages = writer->stage_seconds();
+      PrintNote(fmt::format(
+          "time by stage (thread-seconds): rendering {:.2f}, labels {:.2f}, PNG {:.2f}, JSON and "
+          "models {:.2f}; the rest (sampling, scene lines) {:.2f} s of the run",
+          stages.render, stages.labels, stages.png, stages.json,
+          std::max(0.0, seconds - (stages.render + stages.labels + stages.png + stages.json) /
+                                      std::max(1, args_.sampling.threads))));
     }
     return kExitSuccess;
   }

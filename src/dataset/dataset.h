@@ -78,6 +78,15 @@ struct LabelledView {
   double depth_scale = 1;  // millimetres per unit of the depth PNG (BOP's depth_scale)
   render::LabelledPicture picture;
   std::vector<ObjectLabel> objects;
+  double render_s = 0, label_s = 0;  // time drawing (every pass) and making the labels
+};
+
+/// Where a dataset's time went, in seconds of the threads that spent it.
+struct StageSeconds {
+  double render = 0;  // colour, depth and segmentation passes
+  double labels = 0;  // masks, counts, boxes, poses, RLE
+  double png = 0;     // encoding and writing the pictures and masks
+  double json = 0;    // the chunks' JSON files and models
 };
 
 /// Renders `scene` through `camera` (a name as DatasetOptions::cameras) and labels every object
@@ -123,6 +132,8 @@ class DatasetWriter {
 
   /// The directory written to until Finish: DIR.partial.
   std::string partial_dir() const;
+  /// The time spent so far, by stage.
+  StageSeconds stage_seconds() const;
 
  private:
   struct State;

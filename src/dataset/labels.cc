@@ -4,6 +4,7 @@
 #include <fmt/format.h>
 
 #include <algorithm>
+#include <chrono>
 #include <cmath>
 #include <limits>
 #include <stdexcept>
@@ -162,7 +163,10 @@ LabelledView RenderLabelledView(render::Renderer& renderer, const render::Render
   const render::CameraPose pose = render::CalcViewPose(scene, view);
   LabelledView out;
   out.camera = viewpoint.name;
+  const auto begin = std::chrono::steady_clock::now();
   out.picture = renderer.RenderLabelled(scene, view, labelled);
+  const auto drawn = std::chrono::steady_clock::now();
+  out.render_s = std::chrono::duration<double>(drawn - begin).count();
   out.pinhole = CalcPinholeCamera(pose, viewpoint.fovy_deg, view.width, view.height);
   out.depth_scale = ChooseDepthScale(out.picture.depth);
   const size_t pixels = size_t(view.width) * size_t(view.height);
@@ -191,6 +195,7 @@ LabelledView RenderLabelledView(render::Renderer& renderer, const render::Render
     out.objects.push_back(std::move(label));
   }
   out.picture.silhouettes.clear();
+  out.label_s = std::chrono::duration<double>(std::chrono::steady_clock::now() - drawn).count();
   return out;
 }
 

@@ -5,6 +5,8 @@
 // models. Everything goes to DIR.partial, renamed to DIR when complete.
 #include <fmt/format.h>
 
+#include <atomic>
+#include <chrono>
 #include <filesystem>
 #include <fstream>
 #include <map>
@@ -95,6 +97,8 @@ struct DatasetWriter::State {
   std::optional<ImageRecord> first_image;  // for camera.json
   int64_t images = 0;
   bool finished = false;
+  // StageSeconds in nanoseconds, added to by every thread.
+  std::atomic<int64_t> render_ns{0}, labels_ns{0}, png_ns{0}, json_ns{0};
   // Renderers (OpenGL contexts) free for the next scene: one per thread drawing at once.
   std::mutex pool_mutex;
   std::vector<std::unique_ptr<render::Renderer>> pool;
@@ -133,7 +137,15 @@ struct DatasetWriter::State {
     return categories;
   }
 
-  void WriteChunk(uint64_t number, const Chunk& chunk) const {
+  void WriteChunk(uint64_t number, const Chunk& chunk) {
+    const auto begin = std::chrono::steady_clock::now();
+    WriteChunkFiles(number, chunk);
+    json_ns += std::chrono::duration_cast<std::chrono::nanoseconds>(
+                   std::chrono::steady_clock::now() - begin)
+                   .count();
+  }
+
+  void WriteChunkFiles(uint64_t number, const Chunk& chunk) const {
     const fs::path folder = chunk_dir(number);
     fs::create_directories(folder);
     if (options.bop) {
@@ -237,6 +249,12 @@ DatasetWriter::~DatasetWriter() = default;
 
 std::string DatasetWriter::partial_dir() const { return state_->partial.string(); }
 
+StageSeconds DatasetWriter::stage_seconds() const {
+  const State& s = *state_;
+  return {1e-9 * double(s.render_ns), 1e-9 * double(s.labels_ns), 1e-9 * double(s.png_ns),
+          1e-9 * double(s.json_ns)};
+}
+
 std::shared_ptr<SceneLabels> DatasetWriter::RenderScene(const sampling::SampledScene& sampled,
                                                         uint64_t position) const {
   State& s = *state_;
@@ -266,6 +284,15 @@ std::shared_ptr<SceneLabels> DatasetWriter::RenderScene(const sampling::SampledS
     image.camera = view.camera;
     image.pinhole = view.pinhole;
     image.depth_scale = view.depth_scale;
+    const int w = view.pinhole.width, h = view.pinhole.height;
+    const auto encoding = std::chrono::steady_clock::now();
+    for (const ObjectLabel& o : view.objects) {
+      image.objects.push_back({o.obj_id, o.R_CO, o.p_CO_mm, o.bbox_obj, o.bbox_visib,
+                               o.px_count_all, o.px_count_valid, o.px_count_visib, o.visib_fract,
+                               s.options.coco ? EncodeCocoRle(o.mask_visib, w, h) : ""});
+      labels->bodies.emplace_back(o.obj_id, bodies.bodies[size_t(o.object)]);
+    }
+    const auto writing = std::chrono::steady_clock::now();
     const uint64_t im_id = s.im_id_of(image.image);
     const fs::path folder = s.chunk_dir(s.chunk_of(image.image));
     const std::string name = ImageName(im_id);
@@ -277,20 +304,20 @@ std::shared_ptr<SceneLabels> DatasetWriter::RenderScene(const sampling::SampledS
       fs::create_directories(folder / "mask_visib");
       render::WriteDepthPng(view.picture.depth, (folder / "depth" / (name + ".png")).string(),
                             view.depth_scale);
-    }
-    const int w = view.pinhole.width, h = view.pinhole.height;
-    for (size_t k = 0; k < view.objects.size(); ++k) {
-      const ObjectLabel& o = view.objects[k];
-      if (s.options.bop) {
+      for (size_t k = 0; k < view.objects.size(); ++k) {
         const std::string mask_name = fmt::format("{}_{:06d}.png", name, k);
-        render::WriteMaskPng(o.mask, w, h, (folder / "mask" / mask_name).string());
-        render::WriteMaskPng(o.mask_visib, w, h, (folder / "mask_visib" / mask_name).string());
+        render::WriteMaskPng(view.objects[k].mask, w, h, (folder / "mask" / mask_name).string());
+        render::WriteMaskPng(view.objects[k].mask_visib, w, h,
+                             (folder / "mask_visib" / mask_name).string());
       }
-      image.objects.push_back({o.obj_id, o.R_CO, o.p_CO_mm, o.bbox_obj, o.bbox_visib,
-                               o.px_count_all, o.px_count_valid, o.px_count_visib, o.visib_fract,
-                               s.options.coco ? EncodeCocoRle(o.mask_visib, w, h) : ""});
-      labels->bodies.emplace_back(o.obj_id, bodies.bodies[size_t(o.object)]);
     }
+    const auto written = std::chrono::steady_clock::now();
+    const auto ns = [](auto duration) {
+      return int64_t(std::chrono::duration_cast<std::chrono::nanoseconds>(duration).count());
+    };
+    s.render_ns += int64_t(view.render_s * 1e9);
+    s.labels_ns += int64_t(view.label_s * 1e9) + ns(writing - encoding);
+    s.png_ns += ns(written - writing);
     images.push_back({{"chunk", s.chunk_of(image.image)}, {"im_id", im_id}, {"camera", view.camera}});
     labels->images.push_back(std::move(image));
   }
@@ -324,6 +351,7 @@ int64_t DatasetWriter::Finish() {
   if (s.finished) throw std::logic_error("DatasetWriter::Finish twice");
   for (const auto& [number, chunk] : s.chunks) s.WriteChunk(number, chunk);
   s.chunks.clear();
+  const auto begin = std::chrono::steady_clock::now();
   if (s.first_image && s.options.bop) {
     const PinholeCamera& c = s.first_image->pinhole;
     const Json camera = {{"cx", c.cx},          {"cy", c.cy}, {"depth_scale", s.first_image->depth_scale},
@@ -339,6 +367,9 @@ int64_t DatasetWriter::Finish() {
     }
     WriteFileAtomically(s.partial / "models" / "models_info.json", info.dump(1) + "\n");
   }
+  s.json_ns += std::chrono::duration_cast<std::chrono::nanoseconds>(
+                   std::chrono::steady_clock::now() - begin)
+                   .count();
   std::error_code error;
   if (fs::exists(s.dir, error)) fs::remove(s.dir);  // empty, as the constructor checked
   fs::rename(s.partial, s.dir);

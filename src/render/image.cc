@@ -60,6 +60,7 @@ Image ComposeGrid(const std::vector<Image>& tiles) {
 
 void WritePng(const Image& image, const std::string& path) {
   png_image png = MakePngImage(image.width, image.height, PNG_FORMAT_RGB);
+  png.flags |= PNG_IMAGE_FLAG_FAST;
   WritePngImage(png, path, image.rgb.data());
 }
 
@@ -71,6 +72,7 @@ void WriteDepthPng(const DepthImage& depth, const std::string& path, double mm_p
   }
   // PNG_FORMAT_LINEAR_Y: 16-bit grey written as is (with a linear gamma note).
   png_image png = MakePngImage(depth.width, depth.height, PNG_FORMAT_LINEAR_Y);
+  png.flags |= PNG_IMAGE_FLAG_FAST;
   WritePngImage(png, path, millimetres.data());
 }
 

@@ -31,7 +31,7 @@ class DatasetCommandTest : public PrsTest {
 };
 
 TEST_F(DatasetCommandTest, SameBytesForAnyThreadCountAndSplit) {
-  Result r = Dataset("one", {"-n", "6"});
+  Result r = Dataset("one", {"-n", "6", "--threads", "1"});
   ASSERT_EQ(r.exit_code, 0) << r.err;
   EXPECT_NE(r.err.find("6 labelled images of 6 scenes (BOP and COCO)"), std::string::npos) << r.err;
   ASSERT_EQ(Dataset("two", {"-n", "6", "--threads", "2"}).exit_code, 0);
