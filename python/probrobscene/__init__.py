@@ -36,7 +36,7 @@ __version__ = "0.1.0"
 __all__ = [
     "load", "loads", "Scenario", "Scene", "SceneObject", "ScenarioError", "SamplingError",
     "positions", "dimensions", "quaternions", "yaw_pitch_roll", "search", "report", "campaign",
-    "read_scenes", "test", "estimate", "serve",
+    "read_scenes", "test", "estimate", "dataset", "serve",
 ]
 
 PathLike = Union[str, "os.PathLike[str]"]
@@ -272,12 +272,57 @@ def test(scenes: Union[PathLike, Iterable[Scene]], controller=None, *, exec: Opt
                              float(startup_timeout), threads)
 
 
+
+def dataset(scenes: Union[PathLike, Iterable[Scene]], out: PathLike, *,
+            cameras: Optional[Sequence[str]] = None, size: Optional[Sequence[int]] = None,
+            format: str = "both", labels: Optional[Sequence[str]] = None,
+            start: Optional[int] = None, threads: Optional[int] = None,
+            classes: Optional[Scenario] = None) -> Dict[str, Any]:
+    """Writes ``scenes`` (Scenes, or a path for :func:`read_scenes`) as a labelled dataset in
+    ``out``, as ``prs dataset`` does (docs/dataset.md): BOP (RGB, depth, full and visible masks,
+    poses in mm in OpenCV's camera frame, boxes, models) and COCO annotations, every mask exact.
+
+    ``cameras``: the camera objects to look through (default: every camera object of the first
+    scene); ``size``: ``(width, height)`` (default: each camera's aspect at 640 wide);
+    ``format``: ``"bop"``, ``"coco"`` or ``"both"``; ``labels``: the classes labelled (default
+    all). Scene ``k`` makes the images of position ``start + k``, or of its own index when
+    ``start`` is None (sampled scenes: then the files are those ``prs dataset`` writes for the
+    same seed and indices). ``out`` is written as ``out.partial`` and renamed when complete.
+    Objects are numbered (``obj_id``, ``category_id``) by their program's classes; scenes read
+    from a file know only the classes they use, in order of appearance: give ``classes`` (the
+    Scenario they were drawn from) to number them as that program's own dataset does.
+
+    Returns a dict: ``dir``, ``images``, ``scenes``, ``cameras`` and ``seconds`` (time by stage).
+
+    Raises:
+        ValueError: An unknown camera or one without fovy_deg, aspect, near and far, a size
+            under 16 pixels, an unknown format, a scene with nothing to label, or two scenes
+            that would make the same images.
+        RuntimeError: ``out`` holds anything, or a file cannot be written.
+    """
+    if isinstance(scenes, (str, os.PathLike)):
+        scenes = read_scenes(scenes)
+        start = 0 if start is None else start
+    scenes = list(scenes)
+    if format not in ("bop", "coco", "both"):
+        raise ValueError(f"format must be 'bop', 'coco' or 'both', not {format!r}")
+    width, height = (0, 0) if size is None else (int(size[0]), int(size[1]))
+    if size is not None and (width < 16 or height < 16 or width > 8192 or height > 8192):
+        raise ValueError("size: width and height must be from 16 to 8192 pixels")
+    positions = ([s.index for s in scenes] if start is None
+                 else [int(start) + k for k in range(len(scenes))])
+    return _core.write_dataset(scenes, os.fspath(out), list(cameras or []), width, height,
+                               format != "coco", format != "bop", list(labels or []), positions,
+                               threads or os.cpu_count() or 1,
+                               classes._dataset_classes() if classes is not None else [])
+
+
 if _BUILT:
     from . import campaign  # noqa: E402  (probrobscene.campaign.run: shards on a Dask cluster)
 else:
     _NEEDS_CORE = set(__all__) - {"serve", "ScenarioError", "SamplingError"} | {"_core"}
     __all__[:] = ["serve", "ScenarioError", "SamplingError"]  # in place: linters read the above
-    del load, loads, search, report, read_scenes, test, estimate
+    del load, loads, search, report, read_scenes, test, estimate, dataset
 
     def __getattr__(name: str) -> Any:
         """The compiled API, asked for where it is not built: an ImportError that says so."""

@@ -118,6 +118,8 @@ py::dict RunPythonEstimate(const ProgramPtr& program, const sampling::SampleOpti
                            const std::string& scene_options);
 /// search.cc: report_markdown(lines, title).
 void BindSearch(py::module_& m);
+/// dataset.cc: write_dataset (probrobscene.dataset).
+void BindDataset(py::module_& m);
 /// campaign.cc: campaign_init, campaign_run_shard, campaign_status, campaign_merge.
 void BindCampaign(py::module_& m);
 

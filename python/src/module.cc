@@ -9,4 +9,5 @@ PYBIND11_MODULE(_core, m) {
   prs::python::BindSearch(m);
   prs::python::BindCampaign(m);
   prs::python::BindReplay(m);
+  prs::python::BindDataset(m);
 }

@@ -12,6 +12,7 @@
 #include "analysis/property_variation.h"
 #include "analysis/scenario_outline.h"
 #include "bindings.h"
+#include "dataset/dataset.h"
 #include "harness/harness.h"
 #include "sampling/batch.h"
 #include "sampling/gibbs.h"
@@ -47,6 +48,8 @@ class Scenario {
         settle_s_(settle_s),
         scene_options_(std::move(scene_options)),
         sampler_(*program_, options_) {}
+
+  const lang::CompiledProgram& program() const { return *program_; }
 
   ScenePtr Sample(const py::object& seed_arg, const py::object& index_arg) {
     const uint64_t seed = ToSceneNumber(seed_arg, "seed"),
@@ -332,6 +335,9 @@ std::shared_ptr<lang::CompiledProgram> CompileProgram(const std::string& path,
 
 void BindScenario(py::module_& m) {
   py::class_<Scenario>(m, "Scenario", "A compiled scenario; sample scenes from it.")
+      .def("_dataset_classes",
+           [](const Scenario& s) { return dataset::ListClassIds(s.program()); },
+           "The classes a dataset numbers its objects by (probrobscene.dataset's classes=).")
       .def("sample", &Scenario::Sample, py::arg("seed") = 0, py::arg("index") = 0,
            "Scene `index` of `seed`: the scene `prs sample -s SEED --start INDEX` prints first.\n"
            "Raises SamplingError when no valid scene is found within max_attempts, and\n"

@@ -8,7 +8,6 @@
 #include <chrono>
 #include <map>
 #include <mutex>
-#include <thread>
 
 #include "cli/commands.h"
 #include "cli/common.h"
@@ -33,18 +32,9 @@ struct DatasetArgs {
   std::string size;  // WxH; empty: each camera's aspect at 640 wide
   std::string format = "both";
   std::vector<std::string> labels;
+  std::string classes;  // --classes PROGRAM.prs: a scenes file's ids as that program's
   bool quiet = false;
 };
-
-// The classes objects get ids by: the program's, in its class table's order (built-ins first),
-// so that every run and shard of one program agrees; the abstract points are left out.
-std::vector<std::string> ListClassIds(const lang::CompiledProgram& program) {
-  std::vector<std::string> names;
-  for (const auto& info : program.classes) {
-    if (info->name != "Point3D" && info->name != "OrientedPoint3D") names.push_back(info->name);
-  }
-  return names;
-}
 
 // The checks a usage error reports before anything is written; "" when all is well.
 std::string CheckArgs(const DatasetArgs& args, dataset::DatasetOptions& options) {
@@ -55,6 +45,8 @@ std::string CheckArgs(const DatasetArgs& args, dataset::DatasetOptions& options)
       return std::string("--size: ") + error.what();
     }
   }
+  if (!args.classes.empty() && !IsScenesFile(args.scenario.file))
+    return "--classes is for a scenes file: a program's objects are numbered by its own classes";
   options.bop = args.format != "coco";
   options.coco = args.format != "bop";
   options.labels = args.labels;
@@ -92,7 +84,7 @@ class DatasetRun {
     } catch (const sampling::BatchCancelled&) {
       progress_.Erase();
       PrintNote(fmt::format("interrupted; {} of the dataset are in {}",
-                            FormatCount(done_, "scene"), writer->partial_dir()));
+                            FormatCount(writer->scenes_added(), "scene"), writer->partial_dir()));
       return kExitInterruptedBase + interrupt_.signal_number();
     } catch (const lang::ScenarioError& error) {
       progress_.Erase();
@@ -131,7 +123,7 @@ class DatasetRun {
 
  private:
   std::string DescribePartial(const dataset::DatasetWriter& writer) const {
-    return fmt::format("the {} before it are in {}", FormatCount(done_, "scene"),
+    return fmt::format("the {} before it are in {}", FormatCount(writer.scenes_added(), "scene"),
                        writer.partial_dir());
   }
 
@@ -155,7 +147,7 @@ class DatasetRun {
         return kExitUsage;
       }
     }
-    writer = std::make_unique<dataset::DatasetWriter>(options, ListClassIds(*program_));
+    writer = std::make_unique<dataset::DatasetWriter>(options, dataset::ListClassIds(*program_));
     std::mutex mutex;
     std::map<uint64_t, std::shared_ptr<dataset::SceneLabels>> rendered;
     sampling::BatchCallbacks callbacks;
@@ -189,7 +181,6 @@ class DatasetRun {
     // The scenes of the range, read on this thread (the reader is not thread-safe).
     output::SceneReader reader;
     std::vector<sampling::SampledScene> scenes;
-    std::vector<std::string> class_ids;
     uint64_t at = 0;
     for (size_t i = 0; i < lines->size() && int64_t(scenes.size()) < args_.range.count; ++i) {
       if (IsBlankLine((*lines)[i])) continue;
@@ -199,11 +190,6 @@ class DatasetRun {
       } catch (const std::invalid_argument& error) {
         PrintError(fmt::format("{}:{}: {}", args_.scenario.file, i + 1, error.what()));
         return kExitScenarioError;
-      }
-      for (const lang::SceneObject& o : scenes.back().scene.objects) {
-        const std::string name = o.cls ? o.cls->name : "Object";
-        if (std::find(class_ids.begin(), class_ids.end(), name) == class_ids.end())
-          class_ids.push_back(name);
       }
     }
     if (scenes.empty()) {
@@ -217,34 +203,27 @@ class DatasetRun {
         return kExitUsage;
       }
     }
-    writer = std::make_unique<dataset::DatasetWriter>(options, class_ids);
-    std::vector<std::shared_ptr<dataset::SceneLabels>> rendered(scenes.size());
-    std::atomic<size_t> next{0};
-    std::exception_ptr failure;
-    std::mutex failure_mutex;
-    const auto work = [&] {
-      for (size_t i = next++; i < scenes.size(); i = next++) {
-        try {
-          // Images are numbered by the scene's place in the file (its line keeps its own seed
-          // and index), so that a file of scenes `prs sample --like` drew is numbered densely.
-          rendered[i] = writer->RenderScene(scenes[i], args_.range.start + i);
-        } catch (...) {
-          std::lock_guard<std::mutex> lock(failure_mutex);
-          if (!failure) failure = std::current_exception();
-          next = scenes.size();
-        }
-      }
-    };
-    std::vector<std::thread> threads;
-    const int count = std::max(1, std::min<int>(args_.sampling.threads, int(scenes.size())));
-    for (int t = 1; t < count; ++t) threads.emplace_back(work);
-    work();
-    for (std::thread& t : threads) t.join();
-    for (size_t i = 0; i < scenes.size() && rendered[i]; ++i) {
-      writer->Add(*rendered[i]);
-      ++done_;
+    std::vector<std::string> class_ids = dataset::ListClassIds(*reader.classes());
+    if (!args_.classes.empty()) {
+      ScenarioArgs program_args = args_.scenario;
+      program_args.file = args_.classes;
+      const auto program = CompileScenario(program_args);
+      if (!program) return kExitScenarioError;
+      class_ids = dataset::ListClassIds(*program);
+    } else if (!args_.quiet) {
+      PrintNote("objects are numbered by the classes in the order the file first uses them; "
+                "--classes PROGRAM.prs numbers them as that program's own dataset does");
     }
-    if (failure) std::rethrow_exception(failure);
+    writer = std::make_unique<dataset::DatasetWriter>(options, class_ids);
+    // Images are numbered by the scene's place in the file (its line keeps its own seed and
+    // index), so that a file of scenes `prs sample --like` drew is numbered densely.
+    std::vector<const sampling::SampledScene*> pointers;
+    std::vector<uint64_t> positions;
+    for (size_t i = 0; i < scenes.size(); ++i) {
+      pointers.push_back(&scenes[i]);
+      positions.push_back(args_.range.start + i);
+    }
+    done_ = dataset::AddScenes(*writer, pointers, positions, args_.sampling.threads);
     images = writer->Finish();
     return kExitSuccess;
   }
@@ -286,6 +265,12 @@ CommandRunner ConfigureDatasetCommand(CLI::App& command) {
       .add_option("--label", args->labels,
                   "label only objects of this class (repeatable; default: every class)")
       ->type_name("CLASS");
+  command
+      .add_option("--classes", args->classes,
+                  "with a scenes file: number objects by this program's classes, as its own "
+                  "dataset does")
+      ->type_name("PROGRAM.prs")
+      ->check(NonEmptyPath());
   AddSamplingOptions(command, args->sampling);
   AddDesignOption(command, args->design);
   command.add_flag("-q,--quiet", args->quiet, "no summary on stderr");

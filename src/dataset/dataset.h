@@ -12,6 +12,7 @@
 #include <string>
 #include <vector>
 
+#include "lang/lang.h"
 #include "render/render.h"
 #include "sampling/sampler.h"
 
@@ -28,6 +29,12 @@ struct DatasetOptions {
   std::vector<std::string> labels;
   int64_t images_per_chunk = 1000;  // BOP's scene folders: train_pbr/000000, ...
 };
+
+/// The classes objects get ids by (obj_id and category_id = 1 + place): the program's class
+/// table in its order (built-ins first, then as declared; a scenes file's reader's classes in
+/// order of appearance), without the abstract Point3D and OrientedPoint3D, so that every run and
+/// shard of one program agrees.
+std::vector<std::string> ListClassIds(const lang::CompiledProgram& program);
 
 /// The names of the scene's camera objects, in scene order: the cameras a dataset looks
 /// through by default. The CLI takes them from scene 0 of the seed (or a file's first scene),
@@ -132,6 +139,8 @@ class DatasetWriter {
 
   /// The directory written to until Finish: DIR.partial.
   std::string partial_dir() const;
+  /// The scenes added so far.
+  int64_t scenes_added() const;
   /// The time spent so far, by stage.
   StageSeconds stage_seconds() const;
 
@@ -139,5 +148,11 @@ class DatasetWriter {
   struct State;
   std::unique_ptr<State> state_;
 };
+
+/// Renders `scenes` (scenes[k] at position positions[k]) on `threads` threads and adds them to
+/// `writer` in order. On an error, the scenes before the first failing one are added and the
+/// error is rethrown. Returns how many scenes were added.
+int64_t AddScenes(DatasetWriter& writer, const std::vector<const sampling::SampledScene*>& scenes,
+                  const std::vector<uint64_t>& positions, int threads);
 
 }  // namespace prs::dataset

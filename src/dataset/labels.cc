@@ -10,6 +10,7 @@
 #include <stdexcept>
 
 #include "dataset/dataset.h"
+#include "lang/program.h"
 
 namespace prs::dataset {
 namespace {
@@ -39,6 +40,14 @@ std::string JoinNames(const std::vector<std::string>& names) {
 }
 
 }  // namespace
+
+std::vector<std::string> ListClassIds(const lang::CompiledProgram& program) {
+  std::vector<std::string> names;
+  for (const auto& info : program.classes) {
+    if (info->name != "Point3D" && info->name != "OrientedPoint3D") names.push_back(info->name);
+  }
+  return names;
+}
 
 std::vector<std::string> ListCameraObjects(const render::RenderScene& scene) {
   std::vector<std::string> names;

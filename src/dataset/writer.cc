@@ -11,6 +11,7 @@
 #include <fstream>
 #include <map>
 #include <mutex>
+#include <thread>
 #include <nlohmann/json.hpp>
 #include <stdexcept>
 
@@ -95,7 +96,7 @@ struct DatasetWriter::State {
   std::map<uint64_t, Chunk> chunks;
   std::map<int, exporting::Body> models;  // obj_id -> its class's first labelled object
   std::optional<ImageRecord> first_image;  // for camera.json
-  int64_t images = 0;
+  int64_t images = 0, scenes = 0;
   bool finished = false;
   // StageSeconds in nanoseconds, added to by every thread.
   std::atomic<int64_t> render_ns{0}, labels_ns{0}, png_ns{0}, json_ns{0};
@@ -344,7 +345,10 @@ void DatasetWriter::Add(const SceneLabels& labels) {
   }
   for (const auto& [obj_id, body] : labels.bodies) s.models.emplace(obj_id, body);
   for (const ImageRecord& image : labels.images) s.AddImage(image);
+  ++s.scenes;
 }
+
+int64_t DatasetWriter::scenes_added() const { return state_->scenes; }
 
 int64_t DatasetWriter::Finish() {
   State& s = *state_;
@@ -375,6 +379,36 @@ int64_t DatasetWriter::Finish() {
   fs::rename(s.partial, s.dir);
   s.finished = true;
   return s.images;
+}
+
+int64_t AddScenes(DatasetWriter& writer, const std::vector<const sampling::SampledScene*>& scenes,
+                  const std::vector<uint64_t>& positions, int threads) {
+  if (positions.size() != scenes.size())
+    throw std::invalid_argument("AddScenes: a position per scene");
+  std::vector<std::shared_ptr<SceneLabels>> rendered(scenes.size());
+  std::atomic<size_t> next{0};
+  std::exception_ptr failure;
+  size_t failed_at = scenes.size();
+  std::mutex failure_mutex;
+  const auto work = [&] {
+    for (size_t i = next++; i < scenes.size(); i = next++) {
+      try {
+        rendered[i] = writer.RenderScene(*scenes[i], positions[i]);
+      } catch (...) {
+        std::lock_guard<std::mutex> lock(failure_mutex);
+        if (i < failed_at) failure = std::current_exception(), failed_at = i;
+      }
+    }
+  };
+  std::vector<std::thread> workers;
+  const int count = std::max(1, std::min<int>(threads, int(scenes.size())));
+  for (int t = 1; t < count; ++t) workers.emplace_back(work);
+  work();
+  for (std::thread& t : workers) t.join();
+  int64_t added = 0;
+  for (size_t i = 0; i < failed_at; ++i, ++added) writer.Add(*rendered[i]);
+  if (failure) std::rethrow_exception(failure);
+  return added;
 }
 
 }  // namespace prs::dataset

@@ -69,14 +69,22 @@ TEST_F(DatasetCommandTest, AScenesFileGivesTheProgramsImagesAndItsLinesReadBack)
                  (dir_ / "scenes.jsonl").string()})
                 .exit_code,
             0);
-  const Result r = Run({"dataset", (dir_ / "scenes.jsonl").string(), "-n", "2", "--size",
-                        "160x120", "-o", (dir_ / "from_file").string()});
+  // Numbered by the program's classes, the file's dataset is the program's, byte for byte.
+  Result r = Run({"dataset", (dir_ / "scenes.jsonl").string(), "-n", "2", "--size", "160x120",
+                  "--classes", Example("table_cube.prs"), "-o", (dir_ / "from_file").string()});
   ASSERT_EQ(r.exit_code, 0) << r.err;
-  for (const char* picture : {"rgb/000001.png", "mask_visib/000001_000005.png", "depth/000000.png"}) {
-    const std::string bytes = ReadText(dir_ / "from_file/train_pbr/000000" / picture);
-    EXPECT_FALSE(bytes.empty()) << picture;
-    EXPECT_TRUE(bytes == ReadText(dir_ / "ds/train_pbr/000000" / picture)) << picture;
-  }
+  const auto from_program = ReadTree(dir_ / "ds"), from_file = ReadTree(dir_ / "from_file");
+  EXPECT_GT(from_file.size(), 2u * 14);
+  EXPECT_TRUE(from_program == from_file);
+  // Without --classes, the same pictures, objects numbered by the file's own classes (a note
+  // says so), and --classes with a program is a usage error.
+  r = Run({"dataset", (dir_ / "scenes.jsonl").string(), "-n", "2", "--size", "160x120", "-o",
+           (dir_ / "own").string()});
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  EXPECT_NE(r.err.find("--classes PROGRAM.prs"), std::string::npos) << r.err;
+  EXPECT_TRUE(ReadText(dir_ / "own/train_pbr/000000/rgb/000001.png") ==
+              from_program.at("train_pbr/000000/rgb/000001.png"));
+  EXPECT_EQ(Dataset("x", {"--classes", Example("table_cube.prs")}).exit_code, 2);
   // Each scene's line, with its images and features, is a scene prs reads.
   const std::string lines = (dir_ / "ds/train_pbr/000000/scenes.jsonl").string();
   const auto first = nlohmann::json::parse(ReadText(lines).substr(0, ReadText(lines).find('\n')));
