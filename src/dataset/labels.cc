@@ -150,7 +150,9 @@ LabelledView RenderLabelledView(render::Renderer& renderer, const render::Render
   std::vector<int> obj_ids;
   for (size_t i = 0; i < scene.objects.size(); ++i) {
     const render::RenderObject& o = scene.objects[i];
-    if (&o == &viewpoint || o.shape == render::ObjectShape::kPoint) continue;
+    if (&o == &viewpoint || o.shape == render::ObjectShape::kPoint ||
+        o.shape == render::ObjectShape::kLight)
+      continue;
     if (!options.labels.empty() &&
         std::find(options.labels.begin(), options.labels.end(), o.class_name) ==
             options.labels.end())

@@ -38,7 +38,17 @@ using Rgba = std::array<float, 4>;
 
 /// kSphere is an ellipsoid filling the box; kCylinder and kCapsule are round (the mean of the
 /// half width and length): MuJoCo draws no elliptic ones.
-enum class ObjectShape { kBox, kCylinder, kSphere, kCapsule, kPoint, kCamera, kMesh };
+/// kLight: a light of the scene (a class named like "Light"), drawn as nothing.
+enum class ObjectShape { kBox, kCylinder, kSphere, kCapsule, kPoint, kCamera, kMesh, kLight };
+
+/// A light object's properties (docs/render.md, "Lights"): it shines along its local +y from
+/// its position, in its `color` (white by default) times `intensity`.
+struct LightProperties {
+  double intensity = 0.8;    // diffuse brightness, 0 (off) to about 1 (full)
+  bool directional = false;  // a sun: parallel rays along its direction, from far away
+  double cutoff_deg = 45;    // a spotlight's half-angle (not directional)
+  bool castshadow = true;
+};
 
 /// One object as the renderer needs it (converted from a lang::SceneObject or a JSON object).
 struct RenderObject {
@@ -64,6 +74,7 @@ struct RenderObject {
   /// Of fovy_deg, aspect, near and far: those the object does not give as valid numbers (a
   /// dataset needs them all of a camera it looks through).
   std::vector<std::string> missing_view_properties;
+  LightProperties light;  // kLight only
 };
 
 /// A straight edge of the workspace outline (world frame, metres).

@@ -151,6 +151,40 @@ void PlaceCameraAndLights(mjvScene& scene, mjrContext& context, const CameraPose
   context.shadowClip = static_cast<float>(1.5 * extent.radius_m);
 }
 
+// The scene's light objects, when it has any, replace the render model's sun; the headlight
+// keeps only its ambient fill, so that what the objects receive is the scene's to choose.
+void AddSceneLights(const RenderScene& scene, const SceneExtent& extent, mjvScene& out) {
+  const auto is_light = [](const RenderObject& o) { return o.shape == ObjectShape::kLight; };
+  if (std::none_of(scene.objects.begin(), scene.objects.end(), is_light)) return;
+  int kept = 0;
+  for (int i = 0; i < out.nlight; ++i) {
+    if (!out.lights[i].headlight) continue;
+    mjvLight& fill = out.lights[kept++] = out.lights[i];
+    for (int k = 0; k < 3; ++k) fill.diffuse[k] = fill.specular[k] = 0;
+  }
+  out.nlight = kept;
+  for (const RenderObject& o : scene.objects) {
+    if (!is_light(o) || out.nlight >= mjMAXLIGHT) continue;
+    mjvLight& light = out.lights[out.nlight++];
+    light = mjvLight{};
+    const Eigen::Vector3d dir_W = o.R_WO.normalized().toRotationMatrix().col(1);
+    // A sun's shadow is cast from a point back along its direction, as for the model's sun.
+    const Eigen::Vector3d p_W =
+        o.light.directional ? Eigen::Vector3d(extent.centre_W - 1.5 * extent.radius_m * dir_W) : o.p_WO;
+    for (int k = 0; k < 3; ++k) {
+      light.pos[k] = float(p_W[k]);
+      light.dir[k] = float(dir_W[k]);
+      light.diffuse[k] = float(o.light.intensity * o.color[k]);
+      light.specular[k] = float(0.3 * o.light.intensity * o.color[k]);
+    }
+    light.attenuation[0] = 1;
+    light.cutoff = float(o.light.cutoff_deg);
+    light.exponent = 10;
+    light.directional = o.light.directional;
+    light.castshadow = o.light.castshadow;
+  }
+}
+
 // OpenGL rows run bottom-up; pictures run top-down.
 template <typename T>
 void FlipRows(std::vector<T>& pixels, int width, int height, int channels) {
@@ -286,6 +320,7 @@ CameraPose Renderer::Prepare(const RenderScene& scene, const RenderOptions& opti
   // Through a camera, its own field of view (the picture's size sets the aspect).
   const double fovy_deg = viewpoint ? viewpoint->fovy_deg : options.camera_fovy_deg;
   PlaceCameraAndLights(s.scene, s.context, pose, extent, fovy_deg);
+  AddSceneLights(scene, extent, s.scene);
   return pose;
 }
 

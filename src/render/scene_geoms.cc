@@ -139,6 +139,8 @@ void AddObject(mjvScene& out, const RenderObject& o, double edge_width_m,
       return AddSolid(out, mjGEOM_SPHERE, Eigen::Vector3d::Constant(0.02), o.p_WO, R_WO, o.color);
     case ObjectShape::kCamera:
       return AddCamera(out, o, decorations);
+    case ObjectShape::kLight:
+      return;  // it lights the scene (renderer.cc), it is not seen
   }
 }
 
@@ -162,6 +164,7 @@ SceneExtent CalcSceneExtent(const RenderScene& scene) {
   if (scene.objects.empty()) return {};
   Eigen::Vector3d min_W = Eigen::Vector3d::Constant(1e300), max_W = -min_W;
   for (const RenderObject& o : scene.objects) {
+    if (o.shape == ObjectShape::kLight) continue;  // far above, it would shrink the picture
     const Eigen::Vector3d half = o.R_WO.toRotationMatrix().cwiseAbs() * o.dimensions / 2;
     min_W = min_W.cwiseMin(o.p_WO - half);
     max_W = max_W.cwiseMax(o.p_WO + half);

@@ -16,11 +16,13 @@
 namespace prs::render {
 namespace {
 
-bool ContainsCamera(std::string text) {
+bool ContainsWord(std::string text, const char* word) {
   std::transform(text.begin(), text.end(), text.begin(),
                  [](unsigned char c) { return static_cast<char>(std::tolower(c)); });
-  return text.find("camera") != std::string::npos;
+  return text.find(word) != std::string::npos;
 }
+
+bool ContainsCamera(const std::string& text) { return ContainsWord(text, "camera"); }
 
 // The properties that decide how an object is drawn, as text from either source.
 struct DrawProperties {
@@ -31,9 +33,13 @@ struct DrawProperties {
   std::string color_text;  // what the scene said, for the unknown-colour note
   std::optional<double> fovy_deg, aspect;  // a camera's view, when given as numbers
   std::optional<double> near_m, far_m;     // and the depths it sees
+  // A light's (LightProperties), when given as numbers and booleans.
+  std::optional<double> intensity, cutoff_deg;
+  std::optional<bool> directional, castshadow;
 };
 
 ObjectShape ClassifyShape(const RenderObject& object, const DrawProperties& properties) {
+  if (ContainsWord(object.class_name, "light")) return ObjectShape::kLight;
   if (ContainsCamera(object.class_name) || ContainsCamera(properties.model_name))
     return ObjectShape::kCamera;
   if (object.dimensions.isZero()) return ObjectShape::kPoint;
@@ -49,6 +55,16 @@ void ApplyProperties(const DrawProperties& properties, RenderObject& object,
                      std::vector<std::string>* unknown_colors) {
   object.shape = ClassifyShape(object, properties);
   if (object.shape == ObjectShape::kCamera) object.color = {0.18f, 0.18f, 0.2f, 1.0f};
+  if (object.shape == ObjectShape::kLight) {
+    object.color = {1, 1, 1, 1};
+    LightProperties& light = object.light;
+    if (properties.intensity && *properties.intensity >= 0 && std::isfinite(*properties.intensity))
+      light.intensity = *properties.intensity;
+    if (properties.cutoff_deg && *properties.cutoff_deg > 0 && *properties.cutoff_deg <= 90)
+      light.cutoff_deg = *properties.cutoff_deg;
+    if (properties.directional) light.directional = *properties.directional;
+    if (properties.castshadow) light.castshadow = *properties.castshadow;
+  }
   if (properties.color) {
     object.color = *properties.color;
   } else if (!properties.color_text.empty() && unknown_colors) {
@@ -100,6 +116,10 @@ DrawProperties ReadDrawProperties(const lang::SceneObject& source) {
     if (name == "fovy_deg" && value.Is<double>()) properties.fovy_deg = value.As<double>();
     if (name == "aspect" && value.Is<double>()) properties.aspect = value.As<double>();
     if (name == "near" && value.Is<double>()) properties.near_m = value.As<double>();
+    if (name == "intensity" && value.Is<double>()) properties.intensity = value.As<double>();
+    if (name == "cutoff_deg" && value.Is<double>()) properties.cutoff_deg = value.As<double>();
+    if (name == "directional" && value.Is<bool>()) properties.directional = value.As<bool>();
+    if (name == "castshadow" && value.Is<bool>()) properties.castshadow = value.As<bool>();
     if (name == "far" && value.Is<double>()) properties.far_m = value.As<double>();
   }
   return properties;
@@ -171,6 +191,14 @@ DrawProperties ReadDrawProperties(const nlohmann::json& object) {
   if (json.contains("aspect") && json["aspect"].is_number())
     properties.aspect = json["aspect"].get<double>();
   if (json.contains("near") && json["near"].is_number()) properties.near_m = json["near"].get<double>();
+  if (json.contains("intensity") && json["intensity"].is_number())
+    properties.intensity = json["intensity"].get<double>();
+  if (json.contains("cutoff_deg") && json["cutoff_deg"].is_number())
+    properties.cutoff_deg = json["cutoff_deg"].get<double>();
+  if (json.contains("directional") && json["directional"].is_boolean())
+    properties.directional = json["directional"].get<bool>();
+  if (json.contains("castshadow") && json["castshadow"].is_boolean())
+    properties.castshadow = json["castshadow"].get<bool>();
   if (json.contains("far") && json["far"].is_number()) properties.far_m = json["far"].get<double>();
   if (json.contains("color")) {
     properties.color = ParseColorJson(json["color"]);

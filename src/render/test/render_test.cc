@@ -83,6 +83,55 @@ void ExpectCubeRedAndUpRight(const Image& image, const CameraPose& pose,
   EXPECT_LT(at.y(), options.height / 2.0);
 }
 
+// Mean brightness (0..255) of the columns [x0, x1) of a picture.
+double MeanBrightness(const Image& image, int x0, int x1) {
+  double sum = 0;
+  for (int y = 0; y < image.height; ++y)
+    for (int x = x0; x < x1; ++x)
+      for (int c = 0; c < 3; ++c) sum += image.rgb[(size_t(y) * image.width + x) * 3 + c];
+  return sum / (3.0 * image.height * (x1 - x0));
+}
+
+// A light object: a spotlight at p_W shining along `dir_W` (its local +y).
+RenderObject MakeLight(const Eigen::Vector3d& p_W, const Eigen::Vector3d& dir_W, double intensity) {
+  RenderObject light;
+  light.name = light.class_name = "Light";
+  light.shape = ObjectShape::kLight;
+  light.p_WO = p_W;
+  light.R_WO = Eigen::Quaterniond::FromTwoVectors(Eigen::Vector3d::UnitY(), dir_W);
+  light.color = {1, 1, 1, 1};
+  light.light.intensity = intensity;
+  light.light.cutoff_deg = 25;
+  return light;
+}
+
+TEST(RenderTest, LightObjectsReplaceTheSunAndLightWhereTheyPoint) {
+  RenderOptions options;
+  options.width = 200;
+  options.height = 150;
+  options.view = ParseView("camera:cam");
+  options.decorations = false;
+  RenderScene base = MakeTableSceneWithCamera();
+  // Spotlights 1.5 m above the table, aimed at its left (-x) or right (+x) half.
+  const auto lit = [&](double x, double intensity) {
+    RenderScene scene = base;
+    scene.objects.push_back(MakeLight({x, -0.1, 2.0}, {0, 0, -1}, intensity));
+    return SharedRenderer().Render(scene, options);
+  };
+  const Image left = lit(-0.5, 1.0), right = lit(0.5, 1.0), dim = lit(-0.5, 0.2);
+  // Looking down with +x to the right: the lit half is the brighter one.
+  EXPECT_GT(MeanBrightness(left, 0, 100), MeanBrightness(left, 100, 200) + 20);
+  EXPECT_GT(MeanBrightness(right, 100, 200), MeanBrightness(right, 0, 100) + 20);
+  EXPECT_LT(MeanBrightness(dim, 0, 100), MeanBrightness(left, 0, 100) - 20);
+  // The light is not drawn, and it changes nothing the segmentation sees.
+  RenderScene with_light = base;
+  with_light.objects.push_back(MakeLight({-0.5, -0.1, 2.0}, {0, 0, -1}, 1.0));
+  const LabelledPicture a = SharedRenderer().RenderLabelled(base, options, {0, 1});
+  const LabelledPicture b = SharedRenderer().RenderLabelled(with_light, options, {0, 1});
+  EXPECT_EQ(a.visible.object, b.visible.object);
+  EXPECT_EQ(a.silhouettes, b.silhouettes);
+}
+
 TEST(RenderTest, ImageHasTheRequestedSizeAndIsNotBlank) {
   RenderOptions options;
   options.width = 320;
