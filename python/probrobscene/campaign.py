@@ -33,7 +33,7 @@ def init(dir: PathLike, path: PathLike, n: int, *, seed: int = 0, shard_size: in
          batch: Optional[int] = None, stable: Union[bool, float, None] = None,
          stable_move: float = 0.01, stable_turn: float = 5.0,
          settle: Union[bool, float, None] = None, sampler: str = "rejection",
-         estimate: bool = False) -> str:
+         estimate: bool = False, dataset: Optional[Mapping[str, Any]] = None) -> str:
     """Makes the campaign directory ``dir`` (new or empty), as ``prs campaign init``: ``n``
     episodes of ``controller`` (a built-in name) or ``exec`` (a shell command, docs/harness.md)
     in the scenario file ``path``, or ``n`` scenes without either, in shards of ``shard_size``.
@@ -47,7 +47,10 @@ def init(dir: PathLike, path: PathLike, n: int, *, seed: int = 0, shard_size: in
     (``--stable``, ``--settle``): every shard keeps only scenes at rest, or settles them;
     ``sampler="gibbs"`` draws the scenes from Gibbs chains (``--sampler gibbs``) and
     ``sampler="partial-rejection"`` by partial rejection sampling, the same scenes for any
-    shard layout. Returns the campaign id. Raises ScenarioError for a
+    shard layout. With ``dataset`` (a dict of :func:`probrobscene.dataset`'s ``cameras``,
+    ``size``, ``format`` and ``labels``, ``{}`` for the defaults) each shard is ``prs dataset``'s
+    labelled pictures of its scenes, and :func:`merge` joins them into one dataset
+    (docs/dataset.md). Returns the campaign id. Raises ScenarioError for a
     scenario that does not compile and ValueError for a directory that is in use or an unknown
     controller or strategy."""
     from . import _load_options  # the package's own conversion of params and options
@@ -61,10 +64,26 @@ def init(dir: PathLike, path: PathLike, n: int, *, seed: int = 0, shard_size: in
         raise ValueError("batch is a search's generation size (>= 1): give search= too")
     if estimate and sampler != "rejection":
         raise ValueError("an estimate's weights need the rejection sampler: leave out sampler=")
+    picture = None
+    if dataset is not None:
+        unknown = set(dataset) - {"cameras", "size", "format", "labels"}
+        if unknown:
+            raise ValueError(f"dataset: unknown options {sorted(unknown)} (cameras, size, format, "
+                             f"labels)")
+        fmt = dataset.get("format", "both")
+        if fmt not in ("bop", "coco", "both"):
+            raise ValueError(f"dataset: format must be 'bop', 'coco' or 'both', not {fmt!r}")
+        size = dataset.get("size")
+        width, height = (0, 0) if size is None else (int(size[0]), int(size[1]))
+        if size is not None and (width < 16 or height < 16 or width > 8192 or height > 8192):
+            raise ValueError("dataset: size must be from 16 to 8192 pixels each way")
+        picture = {"cameras": list(dataset.get("cameras") or []), "width": width,
+                   "height": height, "bop": fmt != "coco", "coco": fmt != "bop",
+                   "labels": list(dataset.get("labels") or [])}
     return _core.campaign_init(os.fspath(dir), os.fspath(path), options, n, shard_size, seed,
                                controller or "", exec or "", float(timeout), bool(persistent),
                                float(startup_timeout), search or "",
-                               batch or 0, bool(estimate))
+                               batch or 0, bool(estimate), picture)
 
 
 def run_shard(dir: PathLike, shard: int, threads: int = 1) -> int:
@@ -88,7 +107,9 @@ def merge(dir: PathLike, output: PathLike, partial: bool = False) -> Dict[str, A
     merge``: ``{"lines": N, "skipped": [...]}``. Raises ValueError naming the shards that are
     not done, unless ``partial``. An estimate campaign's records are written as ``prs estimate
     -o`` writes them (with their weights), the dict has ``"estimate"`` (as
-    :func:`probrobscene.estimate` returns it, without the records), and ``partial`` is refused."""
+    :func:`probrobscene.estimate` returns it, without the records), and ``partial`` is refused.
+    A dataset campaign's shards are joined into the dataset ``output`` (``"dataset"`` in the
+    dict), the files one ``prs dataset`` run writes; ``partial`` is refused."""
     return _core.campaign_merge(os.fspath(dir), os.fspath(output), partial)
 
 

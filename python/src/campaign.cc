@@ -7,6 +7,7 @@
 #include <pybind11/stl.h>
 
 #include "bindings.h"
+#include "dataset/dataset.h"
 #include "campaign/search_campaign.h"
 #include "campaign/slurm.h"
 #include "controllers/builtin.h"
@@ -39,9 +40,22 @@ std::string Init(const std::string& dir, const std::string& path, const LoadOpti
                  uint64_t count, uint64_t shard_size, const py::object& seed_arg,
                  const std::string& controller, const std::string& exec, double timeout_s,
                  bool persistent, double startup_timeout_s, const std::string& strategy,
-                 uint64_t batch, bool estimate) {
+                 uint64_t batch, bool estimate, const py::object& dataset) {
   campaign::CampaignSpec spec;
   spec.kind = controller.empty() && exec.empty() ? "sample" : "test";
+  if (!dataset.is_none()) {
+    // probrobscene.campaign.init's dataset=dict(cameras=..., size=..., format=..., labels=...).
+    if (spec.kind != "sample" || !strategy.empty() || estimate)
+      throw py::value_error("a dataset campaign takes no controller, exec, search or estimate");
+    const py::dict d = dataset.cast<py::dict>();
+    spec.kind = "dataset";
+    spec.dataset.cameras = d["cameras"].cast<std::vector<std::string>>();
+    spec.dataset.width = d["width"].cast<int>();
+    spec.dataset.height = d["height"].cast<int>();
+    spec.dataset.bop = d["bop"].cast<bool>();
+    spec.dataset.coco = d["coco"].cast<bool>();
+    spec.dataset.labels = d["labels"].cast<std::vector<std::string>>();
+  }
   if (!strategy.empty()) {
     if (spec.kind == "sample") throw py::value_error("a search needs a controller or exec");
     spec.kind = "search";
@@ -98,6 +112,12 @@ std::string Init(const std::string& dir, const std::string& path, const LoadOpti
   spec.version = PRS_VERSION;
   return CallCampaign([&] {
     try {
+      if (spec.kind == "dataset" && spec.dataset.cameras.empty()) {
+        spec.dataset.cameras =
+            dataset::ListDefaultCameras(*program, campaign::MakeSampleOptions(spec), spec.seed);
+        if (spec.dataset.cameras.empty())
+          throw py::value_error("scene 0 of the seed has no camera object: name one in cameras=");
+      }
       return campaign::InitCampaign(dir, *program, spec).id;
     } catch (const lang::ScenarioError& error) {  // a search's trial attempts
       RaiseScenarioError(error.diagnostic(), program->sources,
@@ -113,7 +133,7 @@ void RunShard(const std::string& dir, uint64_t k, int threads) {
     const campaign::CampaignSpec spec = campaign::ReadCampaign(dir);
     const std::unique_ptr<lang::CompiledProgram> program = campaign::CompileCampaign(dir, spec);
     std::optional<harness::ControllerFactory> factory;
-    if (spec.kind != "sample") factory = ChooseFactory(spec);
+    if (spec.kind != "sample" && spec.kind != "dataset") factory = ChooseFactory(spec);
     std::vector<std::string> warnings;
     try {
       py::gil_scoped_release release;
@@ -199,6 +219,15 @@ py::dict Merge(const std::string& dir, const std::string& output, bool partial) 
       result["estimate"] = ToPythonEstimate(merge.summary.estimate);
       return result;
     }
+    if (spec.kind == "dataset") {
+      if (partial) throw py::value_error("a dataset campaign merges when every shard is done");
+      campaign::MergeDatasetShards(dir, spec, output);
+      py::dict result;
+      result["lines"] = spec.count;  // scenes
+      result["skipped"] = py::list();
+      result["dataset"] = output;
+      return result;
+    }
     std::vector<uint64_t> skipped;
     const std::vector<std::string> lines = campaign::MergeShards(dir, spec, partial, &skipped);
     output::LineWriter out(output);
@@ -217,7 +246,7 @@ void BindCampaign(py::module_& m) {
   m.def("campaign_init", &Init, py::arg("dir"), py::arg("path"), py::arg("options"),
         py::arg("count"), py::arg("shard_size"), py::arg("seed"), py::arg("controller"),
         py::arg("exec"), py::arg("timeout_s"), py::arg("persistent"), py::arg("startup_timeout_s"),
-        py::arg("strategy"), py::arg("batch"), py::arg("estimate"));
+        py::arg("strategy"), py::arg("batch"), py::arg("estimate"), py::arg("dataset"));
   m.def("campaign_plan", &Plan, py::arg("dir"));
   m.def("campaign_run_shard", &RunShard, py::arg("dir"), py::arg("shard"), py::arg("threads"));
   m.def("campaign_status", &Status, py::arg("dir"));

@@ -1,5 +1,5 @@
 """probrobscene.campaign on a real Dask LocalCluster (two worker processes): a merged campaign is
-one machine's run (test, sample, search and estimate campaigns), shards done before are not run again, the
+one machine's run (test, sample, search, estimate and dataset campaigns), shards done before are not run again, the
 CLI and Python share directories, and bad directories get clear errors."""
 
 import json
@@ -68,6 +68,25 @@ def test_dask_scene_campaign_from_a_scenario_file_equals_prs_sample(client, prs_
     # The command line reads the same directory.
     result = run_prs(prs_binary, "campaign", "status", str(camp))
     assert "5 of 5 done" in result.stdout, result.stdout
+
+
+def test_dask_dataset_campaign_merges_into_prs_datasets_files(client, prs_binary, tmp_path):
+    camp = tmp_path / "data"
+    status = campaign.run(TABLE_CUBE, client, dir=camp, n=5, shard_size=2, seed=6,
+                          dataset={"size": (96, 72)})
+    assert status["kind"] == "dataset" and status["counts"]["done"] == 3
+    with pytest.raises(ValueError, match="every shard is done"):
+        campaign.merge(camp, tmp_path / "partial", partial=True)
+    assert campaign.merge(camp, tmp_path / "merged")["dataset"] == str(tmp_path / "merged")
+    result = run_prs(prs_binary, "dataset", TABLE_CUBE, "-n", "5", "-s", "6", "--size", "96x72",
+                     "-o", str(tmp_path / "single"))
+    assert result.returncode == 0, result.stderr
+    tree = lambda root: {str(p.relative_to(root)): p.read_bytes()
+                         for p in sorted(root.rglob("*")) if p.is_file()}
+    single = tree(tmp_path / "single")
+    assert len(single) > 5 * 14 and tree(tmp_path / "merged") == single
+    with pytest.raises(ValueError, match="unknown options"):
+        campaign.init(tmp_path / "bad", TABLE_CUBE, 4, dataset={"colour": "red"})
 
 
 def test_dask_search_campaign_runs_generation_after_generation_as_prs_search(client, prs_binary,

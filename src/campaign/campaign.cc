@@ -55,7 +55,16 @@ nlohmann::json ToJson(const CampaignSpec& s) {
           {"stable_s", s.stable_s},
           {"stable_move_m", s.stable_move_m},
           {"stable_turn_deg", s.stable_turn_deg},
-          {"settle_s", s.settle_s}};
+          {"settle_s", s.settle_s},
+          {"dataset",
+           s.kind != "dataset" ? nlohmann::json()
+                               : nlohmann::json{{"cameras", s.dataset.cameras},
+                                                {"width", s.dataset.width},
+                                                {"height", s.dataset.height},
+                                                {"bop", s.dataset.bop},
+                                                {"coco", s.dataset.coco},
+                                                {"labels", s.dataset.labels},
+                                                {"images_per_chunk", s.dataset.images_per_chunk}}}};
 }
 
 std::string SidecarPath(const std::string& dir, uint64_t k) {
@@ -155,6 +164,10 @@ std::vector<uint64_t> CampaignSpec::generation_shards(uint64_t g) const {
 
 std::string ShardPath(const std::string& dir, uint64_t k) {
   return fmt::format("{}/shards/shard-{:05d}.jsonl", dir, k);
+}
+
+std::string DatasetShardPath(const std::string& dir, uint64_t k) {
+  return fmt::format("{}/shards/shard-{:05d}", dir, k);
 }
 
 CampaignSpec InitCampaign(const std::string& dir, const lang::CompiledProgram& program,
@@ -273,9 +286,21 @@ CampaignSpec ReadCampaign(const std::string& dir) {
     s.stable_move_m = j.value("stable_move_m", 0.01);
     s.stable_turn_deg = j.value("stable_turn_deg", 5.0);
     s.settle_s = j.value("settle_s", 0.0);
+    if (s.kind == "dataset") {
+      const auto& d = j.at("dataset");
+      s.dataset.cameras = d.at("cameras").get<std::vector<std::string>>();
+      s.dataset.width = d.at("width");
+      s.dataset.height = d.at("height");
+      s.dataset.bop = d.at("bop");
+      s.dataset.coco = d.at("coco");
+      s.dataset.labels = d.at("labels").get<std::vector<std::string>>();
+      s.dataset.images_per_chunk = d.at("images_per_chunk");
+      if (s.dataset.cameras.empty()) throw std::exception();
+    }
     uint64_t layout = 0;
     for (uint64_t size : s.generation_sizes) layout += size;
-    if ((s.kind != "test" && s.kind != "sample" && s.kind != "search" && s.kind != "estimate") ||
+    if ((s.kind != "test" && s.kind != "sample" && s.kind != "search" && s.kind != "estimate" &&
+         s.kind != "dataset") ||
         s.count == 0 || s.shard_size == 0 || (s.kind == "search") != (s.batch > 0) ||
         (s.kind == "estimate") != (layout == s.count)) {
       throw std::exception();
@@ -336,6 +361,10 @@ ShardStatus CheckShard(const std::string& dir, const CampaignSpec& spec, uint64_
   if (meta.value("lines", uint64_t{0}) != spec.size(k)) {
     return {ShardStatus::State::kBad, "it holds the wrong number of lines"};
   }
+  if (spec.kind == "dataset" && !fs::is_directory(DatasetShardPath(dir, k), error)) {
+    return {ShardStatus::State::kBad, "its dataset folder " + DatasetShardPath(dir, k) +
+                                          " is missing (moved or deleted after it was written)"};
+  }
   return {ShardStatus::State::kDone, ""};
 }
 
@@ -371,7 +400,8 @@ void RunShard(const std::string& dir, const CampaignSpec& spec,
   sampling::SampleOptions sample = MakeSampleOptions(spec);
   sample.accept = hooks.accept;
   std::vector<std::string> lines;
-  if (spec.kind != "sample" && !factory) throw std::invalid_argument("RunShard: no controller");
+  if (spec.kind != "sample" && spec.kind != "dataset" && !factory)
+    throw std::invalid_argument("RunShard: no controller");
   if (spec.planned()) {
     lines = RunSearchShard(dir, spec, program, k, *factory, threads, cancel, hooks);
   } else if (spec.kind == "test") {
@@ -398,11 +428,34 @@ void RunShard(const std::string& dir, const CampaignSpec& spec,
     batch.count = static_cast<int64_t>(spec.size(k));
     batch.threads = threads;
     batch.cancel = cancel;
-    sampling::SampleBatch(program, batch, {.prepare = {}, .consume = [&](sampling::BatchScene&& s) {
-                                             lines.push_back(output::FormatSceneJson(s.sampled));
-                                           }});
+    const auto keep_line = [&](sampling::BatchScene&& s) {
+      lines.push_back(output::FormatSceneJson(s.sampled));
+    };
+    if (spec.kind == "dataset") {
+      // A re-run rewrites the shard: its sidecar goes first, so that nothing vouches for a
+      // dataset folder while it is being replaced.
+      std::error_code error;
+      fs::remove(SidecarPath(dir, k), error);
+      dataset::DatasetOptions options = spec.dataset;
+      options.dir = DatasetShardPath(dir, k);
+      fs::remove_all(options.dir, error);
+      fs::remove_all(options.dir + ".partial", error);
+      dataset::DatasetWriter writer(options, dataset::ListClassIds(program));
+      dataset::AddSampledScenes(writer, program, batch, {.consume = keep_line});
+      writer.Finish();
+    } else {
+      sampling::SampleBatch(program, batch, {.prepare = {}, .consume = keep_line});
+    }
   }
   WriteShard(dir, spec, k, lines);
+}
+
+void MergeDatasetShards(const std::string& dir, const CampaignSpec& spec, const std::string& out) {
+  if (spec.kind != "dataset") throw CampaignError(dir + " is a " + spec.kind + " campaign");
+  MergeShards(dir, spec, /*partial=*/false, nullptr);  // throws naming the shards not done
+  std::vector<std::string> parts;
+  for (uint64_t k = 0; k < spec.shards(); ++k) parts.push_back(DatasetShardPath(dir, k));
+  dataset::MergeDatasets(parts, out);
 }
 
 std::vector<std::string> MergeShards(const std::string& dir, const CampaignSpec& spec, bool partial,

@@ -15,6 +15,7 @@
 #include <utility>
 #include <vector>
 
+#include "dataset/dataset.h"
 #include "harness/harness.h"
 #include "lang/lang.h"
 
@@ -24,8 +25,9 @@ namespace prs::campaign {
 struct CampaignSpec {
   std::string id;         // unique per init: ties shards to this campaign
   std::string kind;       // "test" (episode records), "sample" (scene lines), "search" (records
-                          // of a failure search, generation after generation: search_campaign.h)
-                          // or "estimate" (prs estimate's records, also in generations)
+                          // of a failure search, generation after generation: search_campaign.h),
+                          // "estimate" (prs estimate's records, also in generations) or
+                          // "dataset" (prs dataset's files: DatasetShardPath)
   std::string main_file;  // the scenario, relative to DIR ("spec/table_cube.prs")
   std::vector<std::string> scenario_words;                  // the FILE -I -p --naive given at init
   std::vector<std::pair<std::string, std::string>> params;  // -p NAME=VALUE
@@ -55,6 +57,9 @@ struct CampaignSpec {
   double stable_turn_deg = 5;
   // --settle: the most simulated seconds scenes get to come to rest (0: off).
   double settle_s = 0;
+  // kind "dataset": prs dataset's options (its dir unused), the cameras named at init (scene 0
+  // of the seed's), so that every shard looks through the same ones.
+  dataset::DatasetOptions dataset;
 
   uint64_t shards() const;
   /// The scenes (episodes) of shard k: [first, first + size).
@@ -100,6 +105,10 @@ std::unique_ptr<lang::CompiledProgram> CompileCampaign(const std::string& dir,
 /// DIR/shards/shard-KKKKK.jsonl and its sidecar .done.json.
 std::string ShardPath(const std::string& dir, uint64_t k);
 
+/// A dataset campaign's shard k: DIR/shards/shard-KKKKK, a dataset (docs/dataset.md) of its
+/// scenes, beside the shard's lines (their scene lines) and sidecar, written after it.
+std::string DatasetShardPath(const std::string& dir, uint64_t k);
+
 /// Where a shard stands, from its files alone.
 struct ShardStatus {
   enum class State { kDone, kMissing, kRunning, kBad } state = State::kMissing;
@@ -129,6 +138,11 @@ void RunShard(const std::string& dir, const CampaignSpec& spec,
               const lang::CompiledProgram& program, uint64_t k,
               const harness::ControllerFactory* factory, int threads,
               const std::atomic<bool>* cancel, const ShardHooks& hooks = {});
+
+/// A dataset campaign's shards merged into the dataset `out` (dataset::MergeDatasets): the
+/// files of one `prs dataset` run over the campaign's range. Throws CampaignError naming the
+/// shards that are not done.
+void MergeDatasetShards(const std::string& dir, const CampaignSpec& spec, const std::string& out);
 
 /// The lines of every done shard in index order. Throws CampaignError naming the shards that
 /// are not done, unless `partial` (then those are skipped and listed in *skipped).

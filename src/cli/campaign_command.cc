@@ -17,6 +17,7 @@
 #include "cli/commands.h"
 #include "cli/common.h"
 #include "cli/controller_options.h"
+#include "cli/dataset_options.h"
 #include "cli/estimate_report.h"
 #include "cli/interrupt.h"
 #include "output/line_writer.h"
@@ -40,6 +41,8 @@ struct CampaignArgs {
   std::string strategy;   // --search: a search campaign
   int64_t batch = 0;      // its generation size (0: as prs search picks)
   bool estimate = false;  // --estimate: an estimate campaign (prs estimate, -n its budget)
+  bool dataset = false;   // --dataset: a dataset campaign (prs dataset, -n scenes)
+  DatasetPictureArgs pictures;
   // every subcommand
   std::string dir;
   // run-shard
@@ -97,7 +100,24 @@ int RunInit(const CampaignArgs& args) {
     }
     spec.kind = "estimate";
   }
-  if (spec.kind != "sample") {
+  if (args.dataset) {
+    if (spec.kind != "sample") {
+      PrintError("--dataset makes labelled pictures of scenes: it takes no controller, "
+                 "--search or --estimate");
+      return kExitUsage;
+    }
+    if (const std::string problem = ReadDatasetPictureArgs(args.pictures, spec.dataset);
+        !problem.empty()) {
+      PrintError(problem);
+      return kExitUsage;
+    }
+    spec.kind = "dataset";
+  } else if (!args.pictures.cameras.empty() || !args.pictures.size.empty() ||
+             !args.pictures.labels.empty() || args.pictures.format != "both") {
+    PrintError("--camera, --size, --format and --label are a dataset campaign's: give --dataset");
+    return kExitUsage;
+  }
+  if (spec.kind != "sample" && spec.kind != "dataset") {
     InterruptWatch interrupt;
     if (!ChooseController(args.controller, interrupt.flag())) return kExitUsage;
   }
@@ -121,6 +141,15 @@ int RunInit(const CampaignArgs& args) {
   spec.startup_timeout_s = args.controller.startup_timeout_s;
   spec.version = PRS_VERSION;
   try {
+    // Every shard looks through the same cameras: scene 0 of the seed's, named now.
+    if (spec.kind == "dataset" && spec.dataset.cameras.empty()) {
+      spec.dataset.cameras =
+          dataset::ListDefaultCameras(*program, campaign::MakeSampleOptions(spec), spec.seed);
+      if (spec.dataset.cameras.empty()) {
+        PrintError(DescribeNoCamera(fmt::format("scene 0 of seed {}", spec.seed)));
+        return kExitUsage;
+      }
+    }
     spec = campaign::InitCampaign(args.dir, *program, spec);
   } catch (const lang::ScenarioError& error) {
     // A search's trial attempts (its coordinates) met a run-time error: located, as prs search.
@@ -132,7 +161,8 @@ int RunInit(const CampaignArgs& args) {
   PrintNote(fmt::format(
       "campaign {} in {}: {} of {} in {} of up to {}; run each with prs "
       "campaign run-shard {} K (K = 0..{})",
-      spec.id, args.dir, FormatCount(spec.count, spec.kind == "sample" ? "scene" : "episode"),
+      spec.id, args.dir,
+      FormatCount(spec.count, spec.kind == "sample" || spec.kind == "dataset" ? "scene" : "episode"),
       args.scenario.file, FormatCount(spec.shards(), "shard"), spec.shard_size, args.dir,
       spec.shards() - 1));
   if (spec.kind == "search") {
@@ -157,7 +187,7 @@ int RunShardCommand(const CampaignArgs& args) {
     const campaign::CampaignSpec spec = campaign::ReadCampaign(args.dir);
     program = campaign::CompileCampaign(args.dir, spec);
     std::optional<harness::ControllerFactory> factory;
-    if (spec.kind != "sample") {
+    if (spec.kind != "sample" && spec.kind != "dataset") {
       factory = ChooseController(
           {spec.controller, spec.exec, spec.timeout_s, spec.persistent, spec.startup_timeout_s},
           interrupt.flag());
@@ -278,6 +308,17 @@ ExitCode MergeEstimate(const CampaignArgs& args, const campaign::CampaignSpec& s
 int RunMerge(const CampaignArgs& args) {
   return WithCampaign(args.dir, [&](const campaign::CampaignSpec& spec) {
     if (spec.kind == "estimate") return MergeEstimate(args, spec);
+    if (spec.kind == "dataset") {
+      if (args.partial) {
+        PrintError("a dataset campaign merges when every shard is done (prs campaign status " +
+                   args.dir + " names the others)");
+        return kExitUsage;
+      }
+      campaign::MergeDatasetShards(args.dir, spec, args.output);
+      PrintNote(fmt::format("{} merged into the dataset {}: the files of one prs dataset run",
+                            FormatCount(spec.shards(), "shard"), args.output));
+      return kExitSuccess;
+    }
     std::vector<uint64_t> skipped;
     const std::vector<std::string> lines =
         campaign::MergeShards(args.dir, spec, args.partial, &skipped);
@@ -498,6 +539,10 @@ CommandRunner ConfigureCampaignCommand(CLI::App& command) {
   init->add_flag("--estimate", args->estimate,
                  "prs estimate's run of budget N in generations, each one job array; merge "
                  "gives its records and its estimate");
+  init->add_flag("--dataset", args->dataset,
+                 "prs dataset's labelled pictures of N scenes; merge gives one dataset "
+                 "(docs/dataset.md)");
+  AddDatasetPictureOptions(*init, args->pictures);
   AddSamplingOptions(*init, args->sampling);
   CLI::App* run = command.add_subcommand("run-shard", "run one shard and write it atomically");
   run->add_option("DIR", args->dir, "the campaign directory")->required();
@@ -510,7 +555,8 @@ CommandRunner ConfigureCampaignCommand(CLI::App& command) {
   status->add_option("DIR", args->dir, "the campaign directory")->required();
   CLI::App* merge = command.add_subcommand("merge", "every shard's lines in index order");
   merge->add_option("DIR", args->dir, "the campaign directory")->required();
-  merge->add_option("-o,--output", args->output, "the merged JSON Lines file")
+  merge->add_option("-o,--output", args->output,
+                    "the merged JSON Lines file (a dataset campaign's: the dataset directory)")
       ->type_name("OUT")
       ->required()
       ->check(NonEmptyPath());

@@ -11,6 +11,7 @@
 
 #include "cli/commands.h"
 #include "cli/common.h"
+#include "cli/dataset_options.h"
 #include "cli/design_option.h"
 #include "cli/interrupt.h"
 #include "cli/progress.h"
@@ -28,38 +29,17 @@ struct DatasetArgs {
   DesignArgs design;
   SceneRangeArgs range;
   std::string output;
-  std::vector<std::string> cameras;
-  std::string size;  // WxH; empty: each camera's aspect at 640 wide
-  std::string format = "both";
-  std::vector<std::string> labels;
+  DatasetPictureArgs pictures;
   std::string classes;  // --classes PROGRAM.prs: a scenes file's ids as that program's
   bool quiet = false;
 };
 
 // The checks a usage error reports before anything is written; "" when all is well.
 std::string CheckArgs(const DatasetArgs& args, dataset::DatasetOptions& options) {
-  if (!args.size.empty()) {
-    try {
-      std::tie(options.width, options.height) = render::ParseSize(args.size);
-    } catch (const std::invalid_argument& error) {
-      return std::string("--size: ") + error.what();
-    }
-  }
   if (!args.classes.empty() && !IsScenesFile(args.scenario.file))
     return "--classes is for a scenes file: a program's objects are numbered by its own classes";
-  options.bop = args.format != "coco";
-  options.coco = args.format != "bop";
-  options.labels = args.labels;
-  options.cameras = args.cameras;
   options.dir = args.output;
-  return "";
-}
-
-std::string NoCameraMessage(const std::string& where) {
-  return where +
-         " has no camera object to look through: add one (examples/model.prs's Camera class "
-         "has the fovy_deg, aspect, near and far a dataset needs) or name an object with "
-         "--camera NAME";
+  return ReadDatasetPictureArgs(args.pictures, options);
 }
 
 class DatasetRun {
@@ -108,7 +88,9 @@ class DatasetRun {
     if (!args_.quiet) {
       PrintNote(fmt::format("{} of {} ({}) in {:.2f} s, {:.1f} images/s, to {}",
                             FormatCount(images, "labelled image"), FormatCount(done_, "scene"),
-                            args_.format == "both" ? "BOP and COCO" : args_.format == "bop" ? "BOP" : "COCO",
+                            args_.pictures.format == "both"  ? "BOP and COCO"
+                            : args_.pictures.format == "bop" ? "BOP"
+                                                             : "COCO",
                             seconds, seconds > 0 ? double(images) / seconds : 0.0, args_.output));
       const dataset::StageSeconds stages = writer->stage_seconds();
       PrintNote(fmt::format(
@@ -138,39 +120,18 @@ class DatasetRun {
       return kExitUsage;
     }
     if (options.cameras.empty()) {
-      // Scene 0 of the seed names the cameras, whatever the range: shards agree.
-      sampling::SceneSampler sampler(*program_, batch.sample);
-      const sampling::SampledScene first = sampler.Sample(batch.seed, 0);
-      options.cameras = dataset::ListCameraObjects(render::MakeRenderScene(first.scene));
+      options.cameras = dataset::ListDefaultCameras(*program_, batch.sample, batch.seed);
       if (options.cameras.empty()) {
-        PrintError(NoCameraMessage(fmt::format("scene 0 of seed {}", batch.seed)));
+        PrintError(DescribeNoCamera(fmt::format("scene 0 of seed {}", batch.seed)));
         return kExitUsage;
       }
     }
     writer = std::make_unique<dataset::DatasetWriter>(options, dataset::ListClassIds(*program_));
-    std::mutex mutex;
-    std::map<uint64_t, std::shared_ptr<dataset::SceneLabels>> rendered;
     sampling::BatchCallbacks callbacks;
-    dataset::DatasetWriter& w = *writer;
-    callbacks.prepare = [&](sampling::BatchScene& scene) {
-      auto labels = w.RenderScene(scene.sampled, scene.sampled.index);
-      std::lock_guard<std::mutex> lock(mutex);
-      rendered[scene.sampled.index] = std::move(labels);
-    };
-    callbacks.consume = [&](sampling::BatchScene&& scene) {
-      std::shared_ptr<dataset::SceneLabels> labels;
-      {
-        std::lock_guard<std::mutex> lock(mutex);
-        auto it = rendered.find(scene.sampled.index);
-        labels = std::move(it->second);
-        rendered.erase(it);
-      }
-      w.Add(*labels);
-      progress_.Update(++done_);
-    };
+    callbacks.consume = [&](sampling::BatchScene&&) { progress_.Update(++done_); };
     progress_.Attach(batch, callbacks);
-    sampling::SampleBatch(*program_, batch, callbacks);
-    images = w.Finish();
+    dataset::AddSampledScenes(*writer, *program_, batch, callbacks);
+    images = writer->Finish();
     return kExitSuccess;
   }
 
@@ -199,7 +160,7 @@ class DatasetRun {
     if (options.cameras.empty()) {
       options.cameras = dataset::ListCameraObjects(render::MakeRenderScene(scenes[0].scene));
       if (options.cameras.empty()) {
-        PrintError(NoCameraMessage(args_.scenario.file + "'s first scene"));
+        PrintError(DescribeNoCamera(args_.scenario.file + "'s first scene"));
         return kExitUsage;
       }
     }
@@ -249,22 +210,7 @@ CommandRunner ConfigureDatasetCommand(CLI::App& command) {
       ->type_name("DIR")
       ->required()
       ->check(NonEmptyPath());
-  command
-      .add_option("--camera", args->cameras,
-                  "look through this camera object (repeatable; default: every camera object)")
-      ->type_name("NAME");
-  command
-      .add_option("--size", args->size,
-                  "picture size (default: each camera's aspect at 640 pixels wide)")
-      ->type_name("WxH");
-  command.add_option("--format", args->format, "what to write: BOP, COCO or both")
-      ->type_name("bop|coco|both")
-      ->check(CLI::IsMember({"bop", "coco", "both"}))
-      ->capture_default_str();
-  command
-      .add_option("--label", args->labels,
-                  "label only objects of this class (repeatable; default: every class)")
-      ->type_name("CLASS");
+  AddDatasetPictureOptions(command, args->pictures);
   command
       .add_option("--classes", args->classes,
                   "with a scenes file: number objects by this program's classes, as its own "

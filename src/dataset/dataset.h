@@ -14,6 +14,7 @@
 
 #include "lang/lang.h"
 #include "render/render.h"
+#include "sampling/batch.h"
 #include "sampling/sampler.h"
 
 namespace prs::dataset {
@@ -40,6 +41,12 @@ std::vector<std::string> ListClassIds(const lang::CompiledProgram& program);
 /// through by default. The CLI takes them from scene 0 of the seed (or a file's first scene),
 /// so that every shard of a dataset agrees.
 std::vector<std::string> ListCameraObjects(const render::RenderScene& scene);
+
+/// The cameras a dataset of `program` looks through by default: the camera objects of scene 0 of
+/// `seed` (whatever range is written), so that every run and shard agrees. Throws what the
+/// sampler throws (lang::ScenarioError).
+std::vector<std::string> ListDefaultCameras(const lang::CompiledProgram& program,
+                                            const sampling::SampleOptions& sample, uint64_t seed);
 
 /// A view as a pinhole camera in OpenCV's convention: camera frame x right, y down, z forward;
 /// pixel (u, v) is column u, row v from the top-left, the centre of the top-left pixel at
@@ -154,5 +161,21 @@ class DatasetWriter {
 /// error is rethrown. Returns how many scenes were added.
 int64_t AddScenes(DatasetWriter& writer, const std::vector<const sampling::SampledScene*>& scenes,
                   const std::vector<uint64_t>& positions, int threads);
+
+/// Samples scenes batch.start .. start + count - 1 of `program` on the batch's threads, renders
+/// each on the thread that sampled it and adds it to `writer` in index order. `callbacks` may
+/// add a `tick` and a `consume` (run after each scene is added: progress); its `prepare` and
+/// `format` must be empty. Throws what SampleBatch throws; the scenes before a failing one are
+/// added.
+void AddSampledScenes(DatasetWriter& writer, const lang::CompiledProgram& program,
+                      const sampling::BatchOptions& batch, sampling::BatchCallbacks callbacks = {});
+
+/// Merges datasets of disjoint image ranges (a campaign's shards, in index order) into `out`
+/// (written as OUT.partial, renamed when complete): the pictures hard-linked (copied across
+/// file systems), each chunk's JSON and scene lines joined in order, camera.json and each
+/// model from the first part that has it. The result is the files one run over the union
+/// writes, byte for byte. Throws std::runtime_error when `out` exists and is not empty, or two
+/// parts hold the same picture.
+void MergeDatasets(const std::vector<std::string>& parts, const std::string& out);
 
 }  // namespace prs::dataset

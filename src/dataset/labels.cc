@@ -11,6 +11,7 @@
 
 #include "dataset/dataset.h"
 #include "lang/program.h"
+#include "render/scene_input.h"
 
 namespace prs::dataset {
 namespace {
@@ -55,6 +56,12 @@ std::vector<std::string> ListCameraObjects(const render::RenderScene& scene) {
     if (o.shape == render::ObjectShape::kCamera) names.push_back(o.name);
   }
   return names;
+}
+
+std::vector<std::string> ListDefaultCameras(const lang::CompiledProgram& program,
+                                            const sampling::SampleOptions& sample, uint64_t seed) {
+  sampling::SceneSampler sampler(program, sample);
+  return ListCameraObjects(render::MakeRenderScene(sampler.Sample(seed, 0).scene));
 }
 
 PinholeCamera CalcPinholeCamera(const render::CameraPose& pose, double fovy_deg, int width,

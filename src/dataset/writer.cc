@@ -16,6 +16,7 @@
 #include <stdexcept>
 
 #include "dataset/dataset.h"
+#include "dataset/files.h"
 #include "dataset/models.h"
 #include "export/export.h"
 #include "output/scene_json.h"
@@ -24,7 +25,6 @@
 namespace prs::dataset {
 
 namespace fs = std::filesystem;
-using Json = nlohmann::ordered_json;
 
 // COCO annotation ids: image g's k-th labelled object is g * kMaxLabelsPerImage + k + 1, unique
 // across chunks, shards and runs of the same dataset.
@@ -67,7 +67,10 @@ Json FormatVector(const Eigen::Vector3d& v) { return Json::array({v.x(), v.y(), 
 
 Json FormatBox(const PixelBox& b) { return Json::array({b[0], b[1], b[2], b[3]}); }
 
-// Written whole or not at all: to a temporary name, then renamed.
+std::string ImageName(uint64_t im_id) { return fmt::format("{:06d}", im_id); }
+
+}  // namespace
+
 void WriteFileAtomically(const fs::path& path, const std::string& bytes) {
   const fs::path temporary = path.string() + ".tmp";
   {
@@ -78,9 +81,11 @@ void WriteFileAtomically(const fs::path& path, const std::string& bytes) {
   fs::rename(temporary, path);
 }
 
-std::string ImageName(uint64_t im_id) { return fmt::format("{:06d}", im_id); }
-
-}  // namespace
+std::string ReadFileBytes(const fs::path& path) {
+  std::ifstream in(path, std::ios::binary);
+  if (!in) throw std::runtime_error("cannot read " + path.string());
+  return std::string(std::istreambuf_iterator<char>(in), {});
+}
 
 struct DatasetWriter::State {
   DatasetOptions options;
@@ -150,9 +155,9 @@ struct DatasetWriter::State {
     const fs::path folder = chunk_dir(number);
     fs::create_directories(folder);
     if (options.bop) {
-      WriteFileAtomically(folder / "scene_camera.json", chunk.scene_camera.dump(1) + "\n");
-      WriteFileAtomically(folder / "scene_gt.json", chunk.scene_gt.dump(1) + "\n");
-      WriteFileAtomically(folder / "scene_gt_info.json", chunk.scene_gt_info.dump(1) + "\n");
+      WriteFileAtomically(folder / "scene_camera.json", FormatBopJson(chunk.scene_camera));
+      WriteFileAtomically(folder / "scene_gt.json", FormatBopJson(chunk.scene_gt));
+      WriteFileAtomically(folder / "scene_gt_info.json", FormatBopJson(chunk.scene_gt_info));
     }
     if (options.coco) {
       Json coco;
@@ -161,7 +166,7 @@ struct DatasetWriter::State {
       coco["categories"] = Categories();
       coco["images"] = chunk.images;
       coco["annotations"] = chunk.annotations;
-      WriteFileAtomically(folder / "annotations.json", coco.dump() + "\n");
+      WriteFileAtomically(folder / "annotations.json", FormatCocoJson(coco));
     }
     WriteFileAtomically(folder / "scenes.jsonl", chunk.scenes);
   }
@@ -337,6 +342,32 @@ std::shared_ptr<SceneLabels> DatasetWriter::RenderScene(const sampling::SampledS
   return labels;
 }
 
+void AddSampledScenes(DatasetWriter& writer, const lang::CompiledProgram& program,
+                      const sampling::BatchOptions& batch, sampling::BatchCallbacks callbacks) {
+  if (callbacks.prepare || callbacks.format)
+    throw std::invalid_argument("AddSampledScenes: prepare and format are its own");
+  // Each scene is rendered by the worker that sampled it; the labels wait here for their turn.
+  std::mutex mutex;
+  std::map<uint64_t, std::shared_ptr<SceneLabels>> rendered;
+  callbacks.prepare = [&](sampling::BatchScene& scene) {
+    auto labels = writer.RenderScene(scene.sampled, scene.sampled.index);
+    std::lock_guard<std::mutex> lock(mutex);
+    rendered[scene.sampled.index] = std::move(labels);
+  };
+  callbacks.consume = [&, after = std::move(callbacks.consume)](sampling::BatchScene&& scene) {
+    std::shared_ptr<SceneLabels> labels;
+    {
+      std::lock_guard<std::mutex> lock(mutex);
+      auto it = rendered.find(scene.sampled.index);
+      labels = std::move(it->second);
+      rendered.erase(it);
+    }
+    writer.Add(*labels);
+    if (after) after(std::move(scene));
+  };
+  sampling::SampleBatch(program, batch, callbacks);
+}
+
 void DatasetWriter::Add(const SceneLabels& labels) {
   State& s = *state_;
   if (s.finished) throw std::logic_error("DatasetWriter::Add after Finish");
@@ -361,7 +392,7 @@ int64_t DatasetWriter::Finish() {
     const Json camera = {{"cx", c.cx},          {"cy", c.cy}, {"depth_scale", s.first_image->depth_scale},
                          {"fx", c.fx},          {"fy", c.fy}, {"height", c.height},
                          {"width", c.width}};
-    WriteFileAtomically(s.partial / "camera.json", camera.dump(1) + "\n");
+    WriteFileAtomically(s.partial / "camera.json", FormatBopJson(camera));
     fs::create_directories(s.partial / "models");
     Json info = Json::object();
     for (const auto& [obj_id, body] : s.models) {
@@ -369,7 +400,7 @@ int64_t DatasetWriter::Finish() {
       WriteFileAtomically(s.partial / "models" / fmt::format("obj_{:06d}.ply", obj_id), model.ply);
       info[std::to_string(obj_id)] = model.info;
     }
-    WriteFileAtomically(s.partial / "models" / "models_info.json", info.dump(1) + "\n");
+    WriteFileAtomically(s.partial / "models" / "models_info.json", FormatBopJson(info));
   }
   s.json_ns += std::chrono::duration_cast<std::chrono::nanoseconds>(
                    std::chrono::steady_clock::now() - begin)

@@ -7,7 +7,8 @@
 # search campaign (three generations, each a job array and a next-step job that plans and
 # submits the next) with one task cancelled: merged, it equals one machine's `prs search`. And an
 # estimate campaign (six generations chained the same way): merged, its records and its printed
-# estimate equal one machine's `prs estimate`.
+# estimate equal one machine's `prs estimate`. And a dataset campaign: merged, one machine's
+# `prs dataset`, byte for byte.
 # Without root or Slurm's packages it prints SKIPPED and the reason, and exits 0; on Debian 12
 # as root after scripts/setup.sh it must run.
 # Usage: tests/slurm/campaign_test.sh PRS_BINARY
@@ -160,4 +161,20 @@ same_records "$work/estimate_merged.jsonl" "$work/estimate_single.jsonl" 200 ||
 cmp -s "$work/estimate_merged.txt" "$work/estimate_single.txt" ||
   fail "the merged estimate printed $(cat "$work/estimate_merged.txt"), prs estimate printed \
 $(cat "$work/estimate_single.txt")"
+
+# A dataset campaign on Slurm: 5 scenes in 3 shards, each shard a dataset (pictures rendered in
+# the Slurm task). Merged, it is one machine's `prs dataset` of the same scenes, byte for byte.
+data=$work/dataset
+"$prs" campaign init "$data" "$example" --dataset -n 5 --shard-size 2 -s 3 --size 160x120 \
+  2>/dev/null
+"$prs" campaign slurm "$data" --max-running 2 >/dev/null
+data_done() { "$prs" campaign status "$data" 2>/dev/null | grep -q "3 of 3 done"; }
+wait_for 300 data_done ||
+  fail "the dataset campaign did not finish: $("$prs" campaign status "$data" 2>&1)"
+"$prs" campaign merge "$data" -o "$work/data_merged" 2>/dev/null
+"$prs" dataset "$example" -n 5 -s 3 --size 160x120 -o "$work/data_single" -q
+diff -r "$work/data_merged" "$work/data_single" >/dev/null ||
+  fail "the merged dataset campaign differs from one machine's prs dataset"
+[[ $(ls "$work/data_merged/train_pbr/000000/rgb" | wc -l) -eq 5 ]] ||
+  fail "the merged dataset does not hold 5 pictures"
 echo "slurm campaign test: passed" >&2

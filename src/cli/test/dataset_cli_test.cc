@@ -140,5 +140,36 @@ TEST_F(DatasetCommandTest, BadInputIsRefusedWithAReasonAndNothingHalfWritten) {
   EXPECT_FALSE(fs::exists(dir_ / "e.partial"));
 }
 
+TEST_F(DatasetCommandTest, ACampaignMergesIntoOneRunsDataset) {
+  const std::string dir = (dir_ / "camp").string();
+  Result r = Run({"campaign", "init", dir, Example("table_cube.prs"), "--dataset", "-n", "5",
+                  "--shard-size", "2", "-s", "1", "--size", "160x120"});
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  EXPECT_NE(r.err.find("5 scenes"), std::string::npos) << r.err;
+  r = Run({"campaign", "merge", dir, "-o", (dir_ / "early").string()});
+  EXPECT_EQ(r.exit_code, 2);
+  EXPECT_NE(r.err.find("shards not done"), std::string::npos) << r.err;
+  for (const char* k : {"2", "0", "1"}) {
+    r = Run({"campaign", "run-shard", dir, k, "--threads", "1"});
+    ASSERT_EQ(r.exit_code, 0) << r.err;
+  }
+  EXPECT_EQ(Run({"campaign", "merge", dir, "-o", (dir_ / "m").string(), "--partial"}).exit_code, 2);
+  r = Run({"campaign", "merge", dir, "-o", (dir_ / "merged").string()});
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  ASSERT_EQ(Dataset("single", {"-n", "5"}).exit_code, 0);
+  const auto merged = ReadTree(dir_ / "merged"), single = ReadTree(dir_ / "single");
+  EXPECT_GT(single.size(), 5u * 14);
+  EXPECT_TRUE(merged == single);
+  // The picture options belong to a dataset campaign, which takes no controller.
+  r = Run({"campaign", "init", (dir_ / "c2").string(), Example("table_cube.prs"), "-n", "4",
+           "--size", "64x48"});
+  EXPECT_EQ(r.exit_code, 2);
+  EXPECT_NE(r.err.find("give --dataset"), std::string::npos) << r.err;
+  r = Run({"campaign", "init", (dir_ / "c3").string(), Example("table_cube.prs"), "-n", "4",
+           "--dataset", "--controller", "table-cube"});
+  EXPECT_EQ(r.exit_code, 2);
+  EXPECT_NE(r.err.find("takes no controller"), std::string::npos) << r.err;
+}
+
 }  // namespace
 }  // namespace prs::cli
