@@ -25,6 +25,7 @@ packages=(
   libegl-dev libegl-mesa0 libgl1-mesa-dri  # prs render: MuJoCo's renderer on EGL with
                          # Mesa's software rasteriser (llvmpipe), no GPU or display
   libpng-dev             # prs render: PNG files
+  libjpeg62-turbo-dev    # prs dataset --jpeg: JPEG pictures (libjpeg-turbo)
   liburdfdom-dev libconsole-bridge-dev libtinyxml-dev  # arms from URDF files (src/kinematics:
                          # `reachable by` in the language); urdfdom logs through console_bridge
                          # and parses with TinyXML, both included directly

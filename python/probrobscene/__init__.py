@@ -277,7 +277,7 @@ def dataset(scenes: Union[PathLike, Iterable[Scene]], out: PathLike, *,
             cameras: Optional[Sequence[str]] = None, size: Optional[Sequence[int]] = None,
             format: str = "both", labels: Optional[Sequence[str]] = None,
             start: Optional[int] = None, threads: Optional[int] = None,
-            classes: Optional[Scenario] = None) -> Dict[str, Any]:
+            classes: Optional[Scenario] = None, jpeg: bool = False) -> Dict[str, Any]:
     """Writes ``scenes`` (Scenes, or a path for :func:`read_scenes`) as a labelled dataset in
     ``out``, as ``prs dataset`` does (docs/dataset.md): BOP (RGB, depth, full and visible masks,
     poses in mm in OpenCV's camera frame, boxes, models) and COCO annotations, every mask exact.
@@ -285,7 +285,7 @@ def dataset(scenes: Union[PathLike, Iterable[Scene]], out: PathLike, *,
     ``cameras``: the camera objects to look through (default: every camera object of the first
     scene); ``size``: ``(width, height)`` (default: each camera's aspect at 640 wide);
     ``format``: ``"bop"``, ``"coco"`` or ``"both"``; ``labels``: the classes labelled (default
-    all). Scene ``k`` makes the images of position ``start + k``, or of its own index when
+    all); ``jpeg``: colour pictures as JPEG instead of PNG. Scene ``k`` makes the images of position ``start + k``, or of its own index when
     ``start`` is None (sampled scenes: then the files are those ``prs dataset`` writes for the
     same seed and indices). ``out`` is written as ``out.partial`` and renamed when complete.
     Objects are numbered (``obj_id``, ``category_id``) by their program's classes; scenes read
@@ -312,7 +312,8 @@ def dataset(scenes: Union[PathLike, Iterable[Scene]], out: PathLike, *,
     positions = ([s.index for s in scenes] if start is None
                  else [int(start) + k for k in range(len(scenes))])
     return _core.write_dataset(scenes, os.fspath(out), list(cameras or []), width, height,
-                               format != "coco", format != "bop", list(labels or []), positions,
+                               format != "coco", format != "bop", bool(jpeg),
+                               list(labels or []), positions,
                                threads or os.cpu_count() or 1,
                                classes._dataset_classes() if classes is not None else [])
 

@@ -118,7 +118,7 @@ def dataset(scenes: Union[PathLike, Iterable[Scene]], out: PathLike, *,
             cameras: Optional[Sequence[str]] = None, size: Optional[Sequence[int]] = None,
             format: str = "both", labels: Optional[Sequence[str]] = None,
             start: Optional[int] = None, threads: Optional[int] = None,
-            classes: Optional[Scenario] = None) -> Dict[str, Any]: ...
+            classes: Optional[Scenario] = None, jpeg: bool = False) -> Dict[str, Any]: ...
 def test(scenes: Union[PathLike, Iterable[Scene]],
          controller: Union[Callable[[Scene], Union[str, Mapping[str, Any]]], str, None] = None, *,
          exec: Optional[str] = None, persistent: bool = False, timeout: float = 60.0,

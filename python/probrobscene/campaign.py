@@ -66,10 +66,10 @@ def init(dir: PathLike, path: PathLike, n: int, *, seed: int = 0, shard_size: in
         raise ValueError("an estimate's weights need the rejection sampler: leave out sampler=")
     picture = None
     if dataset is not None:
-        unknown = set(dataset) - {"cameras", "size", "format", "labels"}
+        unknown = set(dataset) - {"cameras", "size", "format", "labels", "jpeg"}
         if unknown:
             raise ValueError(f"dataset: unknown options {sorted(unknown)} (cameras, size, format, "
-                             f"labels)")
+                             f"labels, jpeg)")
         fmt = dataset.get("format", "both")
         if fmt not in ("bop", "coco", "both"):
             raise ValueError(f"dataset: format must be 'bop', 'coco' or 'both', not {fmt!r}")
@@ -79,7 +79,8 @@ def init(dir: PathLike, path: PathLike, n: int, *, seed: int = 0, shard_size: in
             raise ValueError("dataset: size must be from 16 to 8192 pixels each way")
         picture = {"cameras": list(dataset.get("cameras") or []), "width": width,
                    "height": height, "bop": fmt != "coco", "coco": fmt != "bop",
-                   "labels": list(dataset.get("labels") or [])}
+                   "labels": list(dataset.get("labels") or []),
+                   "jpeg": bool(dataset.get("jpeg", False))}
     return _core.campaign_init(os.fspath(dir), os.fspath(path), options, n, shard_size, seed,
                                controller or "", exec or "", float(timeout), bool(persistent),
                                float(startup_timeout), search or "",

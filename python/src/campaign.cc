@@ -55,6 +55,7 @@ std::string Init(const std::string& dir, const std::string& path, const LoadOpti
     spec.dataset.bop = d["bop"].cast<bool>();
     spec.dataset.coco = d["coco"].cast<bool>();
     spec.dataset.labels = d["labels"].cast<std::vector<std::string>>();
+    spec.dataset.jpeg = d["jpeg"].cast<bool>();
   }
   if (!strategy.empty()) {
     if (spec.kind == "sample") throw py::value_error("a search needs a controller or exec");

@@ -13,7 +13,7 @@ namespace {
 
 py::dict WriteDataset(const std::vector<ScenePtr>& scenes, const std::string& dir,
                       std::vector<std::string> cameras, int width, int height, bool bop,
-                      bool coco, std::vector<std::string> labels,
+                      bool coco, bool jpeg, std::vector<std::string> labels,
                       const std::vector<uint64_t>& positions, int threads,
                       std::vector<std::string> class_ids) {
   if (scenes.empty()) throw py::value_error("no scenes to write");
@@ -30,6 +30,7 @@ py::dict WriteDataset(const std::vector<ScenePtr>& scenes, const std::string& di
   options.height = height;
   options.bop = bop;
   options.coco = coco;
+  options.jpeg = jpeg;
   options.labels = std::move(labels);
   if (options.cameras.empty()) {
     options.cameras =
@@ -74,7 +75,7 @@ py::dict WriteDataset(const std::vector<ScenePtr>& scenes, const std::string& di
   py::dict seconds;
   seconds["render"] = stages.render;
   seconds["labels"] = stages.labels;
-  seconds["png"] = stages.png;
+  seconds["pictures"] = stages.pictures;
   seconds["json"] = stages.json;
   result["seconds"] = seconds;
   return result;
@@ -84,7 +85,7 @@ py::dict WriteDataset(const std::vector<ScenePtr>& scenes, const std::string& di
 
 void BindDataset(py::module_& m) {
   m.def("write_dataset", &WriteDataset, py::arg("scenes"), py::arg("dir"), py::arg("cameras"),
-        py::arg("width"), py::arg("height"), py::arg("bop"), py::arg("coco"), py::arg("labels"),
+        py::arg("width"), py::arg("height"), py::arg("bop"), py::arg("coco"), py::arg("jpeg"), py::arg("labels"),
         py::arg("positions"), py::arg("threads"), py::arg("class_ids"));
 }
 

@@ -20,7 +20,7 @@ def test_sampled_scenes_give_the_command_lines_files(prs_binary, table_cube, tmp
     summary = prs.dataset(scenes, tmp_path / "py", size=(160, 120), threads=2)
     assert summary["images"] == 3 and summary["scenes"] == 3
     assert summary["cameras"] == ["Camera#6"]
-    assert set(summary["seconds"]) == {"render", "labels", "png", "json"}
+    assert set(summary["seconds"]) == {"render", "labels", "pictures", "json"}
     cli, py = read_tree(tmp_path / "cli"), read_tree(tmp_path / "py")
     assert len(cli) > 3 * 14
     assert cli == py

@@ -64,6 +64,7 @@ nlohmann::json ToJson(const CampaignSpec& s) {
                                                 {"bop", s.dataset.bop},
                                                 {"coco", s.dataset.coco},
                                                 {"labels", s.dataset.labels},
+                                                {"jpeg", s.dataset.jpeg},
                                                 {"images_per_chunk", s.dataset.images_per_chunk}}}};
 }
 
@@ -295,6 +296,7 @@ CampaignSpec ReadCampaign(const std::string& dir) {
       s.dataset.coco = d.at("coco");
       s.dataset.labels = d.at("labels").get<std::vector<std::string>>();
       s.dataset.images_per_chunk = d.at("images_per_chunk");
+      s.dataset.jpeg = d.value("jpeg", false);
       if (s.dataset.cameras.empty()) throw std::exception();
     }
     uint64_t layout = 0;

@@ -113,8 +113,10 @@ int RunInit(const CampaignArgs& args) {
     }
     spec.kind = "dataset";
   } else if (!args.pictures.cameras.empty() || !args.pictures.size.empty() ||
-             !args.pictures.labels.empty() || args.pictures.format != "both") {
-    PrintError("--camera, --size, --format and --label are a dataset campaign's: give --dataset");
+             !args.pictures.labels.empty() || args.pictures.format != "both" ||
+             args.pictures.jpeg) {
+    PrintError("--camera, --size, --format, --label and --jpeg are a dataset campaign's: give "
+               "--dataset");
     return kExitUsage;
   }
   if (spec.kind != "sample" && spec.kind != "dataset") {

@@ -94,10 +94,10 @@ class DatasetRun {
                             seconds, seconds > 0 ? double(images) / seconds : 0.0, args_.output));
       const dataset::StageSeconds stages = writer->stage_seconds();
       PrintNote(fmt::format(
-          "time by stage (thread-seconds): rendering {:.2f}, labels {:.2f}, PNG {:.2f}, JSON and "
+          "time by stage (thread-seconds): rendering {:.2f}, labels {:.2f}, pictures {:.2f}, JSON and "
           "models {:.2f}; the rest (sampling, scene lines) {:.2f} s of the run",
-          stages.render, stages.labels, stages.png, stages.json,
-          std::max(0.0, seconds - (stages.render + stages.labels + stages.png + stages.json) /
+          stages.render, stages.labels, stages.pictures, stages.json,
+          std::max(0.0, seconds - (stages.render + stages.labels + stages.pictures + stages.json) /
                                       std::max(1, args_.sampling.threads))));
     }
     return kExitSuccess;

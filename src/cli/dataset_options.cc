@@ -24,6 +24,8 @@ void AddDatasetPictureOptions(CLI::App& command, DatasetPictureArgs& args) {
       .add_option("--label", args.labels,
                   "label only objects of this class (repeatable; default: every class)")
       ->type_name("CLASS");
+  command.add_flag("--jpeg", args.jpeg,
+                   "colour pictures as JPEG (quality 95, BOP's train_pbr habit) instead of PNG");
 }
 
 std::string ReadDatasetPictureArgs(const DatasetPictureArgs& args,
@@ -39,6 +41,7 @@ std::string ReadDatasetPictureArgs(const DatasetPictureArgs& args,
   options.coco = args.format != "bop";
   options.labels = args.labels;
   options.cameras = args.cameras;
+  options.jpeg = args.jpeg;
   return "";
 }
 

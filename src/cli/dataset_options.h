@@ -15,9 +15,10 @@ struct DatasetPictureArgs {
   std::string size;  // WxH; empty: each camera's aspect at 640 wide
   std::string format = "both";
   std::vector<std::string> labels;
+  bool jpeg = false;
 };
 
-/// Adds --camera, --size, --format and --label to `command`.
+/// Adds --camera, --size, --format, --label and --jpeg to `command`.
 void AddDatasetPictureOptions(CLI::App& command, DatasetPictureArgs& args);
 
 /// Fills the cameras, size, formats and labels of `options`; returns the usage error to print

@@ -26,6 +26,7 @@ struct DatasetOptions {
   std::vector<std::string> cameras;
   int width = 0, height = 0;  // 0: each camera's own aspect at 640 pixels wide
   bool bop = true, coco = true;
+  bool jpeg = false;  // rgb/IMID.jpg (quality 95) instead of rgb/IMID.png
   /// The classes labelled (empty: every class). Other objects are drawn, not labelled.
   std::vector<std::string> labels;
   int64_t images_per_chunk = 1000;  // BOP's scene folders: train_pbr/000000, ...
@@ -99,7 +100,7 @@ struct LabelledView {
 struct StageSeconds {
   double render = 0;  // colour, depth and segmentation passes
   double labels = 0;  // masks, counts, boxes, poses, RLE
-  double png = 0;     // encoding and writing the pictures and masks
+  double pictures = 0;  // encoding and writing the pictures and masks (PNG, JPEG)
   double json = 0;    // the chunks' JSON files and models
 };
 

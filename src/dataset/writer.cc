@@ -104,7 +104,7 @@ struct DatasetWriter::State {
   int64_t images = 0, scenes = 0;
   bool finished = false;
   // StageSeconds in nanoseconds, added to by every thread.
-  std::atomic<int64_t> render_ns{0}, labels_ns{0}, png_ns{0}, json_ns{0};
+  std::atomic<int64_t> render_ns{0}, labels_ns{0}, pictures_ns{0}, json_ns{0};
   // Renderers (OpenGL contexts) free for the next scene: one per thread drawing at once.
   std::mutex pool_mutex;
   std::vector<std::unique_ptr<render::Renderer>> pool;
@@ -125,6 +125,7 @@ struct DatasetWriter::State {
     pool.push_back(std::move(renderer));
   }
 
+  const char* PictureExtension() const { return options.jpeg ? ".jpg" : ".png"; }
   uint64_t chunk_of(uint64_t g) const { return g / uint64_t(options.images_per_chunk); }
   uint64_t im_id_of(uint64_t g) const { return g % uint64_t(options.images_per_chunk); }
   fs::path chunk_dir(uint64_t chunk) const {
@@ -209,7 +210,7 @@ struct DatasetWriter::State {
     chunk.scene_gt[key] = std::move(gt);
     chunk.scene_gt_info[key] = std::move(info);
     chunk.images.push_back({{"id", image.image},
-                            {"file_name", "rgb/" + ImageName(im_id) + ".png"},
+                            {"file_name", "rgb/" + ImageName(im_id) + PictureExtension()},
                             {"width", c.width},
                             {"height", c.height}});
     if (!first_image) first_image = image;
@@ -257,7 +258,7 @@ std::string DatasetWriter::partial_dir() const { return state_->partial.string()
 
 StageSeconds DatasetWriter::stage_seconds() const {
   const State& s = *state_;
-  return {1e-9 * double(s.render_ns), 1e-9 * double(s.labels_ns), 1e-9 * double(s.png_ns),
+  return {1e-9 * double(s.render_ns), 1e-9 * double(s.labels_ns), 1e-9 * double(s.pictures_ns),
           1e-9 * double(s.json_ns)};
 }
 
@@ -303,7 +304,12 @@ std::shared_ptr<SceneLabels> DatasetWriter::RenderScene(const sampling::SampledS
     const fs::path folder = s.chunk_dir(s.chunk_of(image.image));
     const std::string name = ImageName(im_id);
     fs::create_directories(folder / "rgb");
-    render::WritePng(view.picture.rgb, (folder / "rgb" / (name + ".png")).string());
+    const std::string picture = (folder / "rgb" / (name + s.PictureExtension())).string();
+    if (s.options.jpeg) {
+      render::WriteJpeg(view.picture.rgb, picture);
+    } else {
+      render::WritePng(view.picture.rgb, picture);
+    }
     if (s.options.bop) {
       fs::create_directories(folder / "depth");
       fs::create_directories(folder / "mask");
@@ -323,7 +329,7 @@ std::shared_ptr<SceneLabels> DatasetWriter::RenderScene(const sampling::SampledS
     };
     s.render_ns += int64_t(view.render_s * 1e9);
     s.labels_ns += int64_t(view.label_s * 1e9) + ns(writing - encoding);
-    s.png_ns += ns(written - writing);
+    s.pictures_ns += ns(written - writing);
     images.push_back({{"chunk", s.chunk_of(image.image)}, {"im_id", im_id}, {"camera", view.camera}});
     labels->images.push_back(std::move(image));
   }

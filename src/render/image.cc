@@ -1,6 +1,13 @@
-// Pictures after rendering: grids of tiles, and PNG files through libpng's simplified API
-// (png_image_write_to_file: no setjmp error handling to wrap).
+// Pictures after rendering: grids of tiles, PNG files through libpng's simplified API
+// (png_image_write_to_file: no setjmp error handling to wrap), and JPEG files through
+// libjpeg-turbo (whose error handler must jump back: WriteJpeg).
 #include <png.h>
+// jpeglib.h needs FILE and size_t declared first.
+#include <cstdio>
+#include <jpeglib.h>
+
+#include <csetjmp>
+#include <fstream>
 
 #include <cmath>
 #include <stdexcept>
@@ -85,6 +92,58 @@ void WriteMaskPng(const std::vector<uint8_t>& mask, int width, int height,
   png_image png = MakePngImage(width, height, PNG_FORMAT_GRAY);
   png.flags |= PNG_IMAGE_FLAG_FAST;  // two values: fast compression loses little
   WritePngImage(png, path, grey.data());
+}
+
+namespace {
+
+// libjpeg reports errors by calling error_exit, which by default ends the process: ours jumps
+// back to the caller with the message instead.
+struct JpegError {
+  jpeg_error_mgr manager;
+  std::jmp_buf back;
+  char message[JMSG_LENGTH_MAX];
+};
+
+void JumpBack(j_common_ptr info) {
+  JpegError* error = reinterpret_cast<JpegError*>(info->err);
+  (*info->err->format_message)(info, error->message);
+  std::longjmp(error->back, 1);
+}
+
+}  // namespace
+
+void WriteJpeg(const Image& image, const std::string& path, int quality) {
+  jpeg_compress_struct info{};
+  JpegError error{};
+  info.err = jpeg_std_error(&error.manager);
+  error.manager.error_exit = JumpBack;
+  unsigned char* bytes = nullptr;
+  unsigned long size = 0;
+  if (setjmp(error.back)) {
+    jpeg_destroy_compress(&info);
+    std::free(bytes);
+    throw std::runtime_error("cannot write " + path + ": " + error.message);
+  }
+  jpeg_create_compress(&info);
+  jpeg_mem_dest(&info, &bytes, &size);
+  info.image_width = JDIMENSION(image.width);
+  info.image_height = JDIMENSION(image.height);
+  info.input_components = 3;
+  info.in_color_space = JCS_RGB;
+  jpeg_set_defaults(&info);
+  info.dct_method = JDCT_ISLOW;  // exact integer DCT: the same bytes on every CPU
+  jpeg_set_quality(&info, quality, TRUE);
+  jpeg_start_compress(&info, TRUE);
+  while (info.next_scanline < info.image_height) {
+    JSAMPROW row = const_cast<JSAMPROW>(&image.rgb[size_t(info.next_scanline) * image.width * 3]);
+    jpeg_write_scanlines(&info, &row, 1);
+  }
+  jpeg_finish_compress(&info);
+  jpeg_destroy_compress(&info);
+  std::ofstream out(path, std::ios::binary);
+  out.write(reinterpret_cast<const char*>(bytes), std::streamsize(size));
+  std::free(bytes);
+  if (!out) throw std::runtime_error("cannot write " + path);
 }
 
 }  // namespace prs::render

@@ -203,6 +203,9 @@ void WritePng(const Image& image, const std::string& path);
 /// millimetres, the usual RGB-D convention; BOP's depth_scale), 0 where nothing was seen or
 /// beyond 65,535 units. Throws std::runtime_error naming the path.
 void WriteDepthPng(const DepthImage& depth, const std::string& path, double mm_per_unit = 1.0);
+/// Writes an 8-bit RGB JPEG of `quality` (1 to 100; libjpeg-turbo, exact integer DCT, so the
+/// same bytes on every machine). Throws std::runtime_error naming the path.
+void WriteJpeg(const Image& image, const std::string& path, int quality = 95);
 /// Writes an 8-bit grey PNG of a mask (width * height values, row-major from the top): 255
 /// where it is not 0, else 0 (BOP's masks). Throws std::runtime_error naming the path.
 void WriteMaskPng(const std::vector<uint8_t>& mask, int width, int height, const std::string& path);

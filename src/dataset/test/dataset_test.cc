@@ -522,6 +522,45 @@ TEST(DatasetWriterTest, RefusesAnotherDatasetAndMissingIntrinsics) {
   fs::remove_all(dir);
 }
 
+// The width and height of a baseline JPEG from its SOF0 marker (FF C0), read here.
+std::pair<int, int> ReadJpegSize(const fs::path& path) {
+  std::ifstream in(path, std::ios::binary);
+  const std::string b((std::istreambuf_iterator<char>(in)), {});
+  if (b.size() < 4 || uint8_t(b[0]) != 0xFF || uint8_t(b[1]) != 0xD8) return {0, 0};
+  for (size_t at = 2; at + 9 < b.size();) {
+    if (uint8_t(b[at]) != 0xFF) return {0, 0};
+    const uint8_t marker = uint8_t(b[at + 1]);
+    const size_t length = size_t(uint8_t(b[at + 2])) << 8 | uint8_t(b[at + 3]);
+    if (marker == 0xC0) {
+      const int height = uint8_t(b[at + 5]) << 8 | uint8_t(b[at + 6]);
+      const int width = uint8_t(b[at + 7]) << 8 | uint8_t(b[at + 8]);
+      return {width, height};
+    }
+    at += 2 + length;
+  }
+  return {0, 0};
+}
+
+TEST(DatasetWriterTest, JpegPicturesAndTheirCocoNames) {
+  const fs::path dir = fs::temp_directory_path() / ("prs_dataset_jpeg_" + std::to_string(getpid()));
+  fs::remove_all(dir);
+  const auto program = Compile(kProgram);
+  DatasetOptions options;
+  options.dir = (dir / "ds").string();
+  options.cameras = {"cam"};
+  options.width = 96;
+  options.height = 64;
+  options.jpeg = true;
+  DatasetWriter writer(options, {"Object", "Camera", "Crate", "Lid"});
+  writer.Add(*writer.RenderScene(SampleScene(*program), 7));
+  writer.Finish();
+  const fs::path chunk = dir / "ds" / "train_pbr" / "000000";
+  EXPECT_EQ(ReadJpegSize(chunk / "rgb" / "000007.jpg"), std::make_pair(96, 64));
+  EXPECT_FALSE(fs::exists(chunk / "rgb" / "000007.png"));
+  EXPECT_EQ(ReadJson(chunk / "annotations.json")["images"][0]["file_name"], "rgb/000007.jpg");
+  fs::remove_all(dir);
+}
+
 TEST(CocoRleTest, EncodesRunsDownTheColumnsAsPycocotoolsDoes) {
   // 3 x 2 (width x height): column-major pixels 0 1 | 1 1 | 0 0 -> runs 1, 3, 2.
   const std::vector<uint8_t> mask = {0, 1, 0,  //
