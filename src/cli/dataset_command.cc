@@ -5,6 +5,7 @@
 #include <fmt/format.h>
 
 #include <atomic>
+#include <filesystem>
 #include <chrono>
 #include <map>
 #include <mutex>
@@ -31,6 +32,7 @@ struct DatasetArgs {
   std::string output;
   DatasetPictureArgs pictures;
   std::string classes;  // --classes PROGRAM.prs: a scenes file's ids as that program's
+  bool append = false;  // --append: grow the dataset DIR
   bool quiet = false;
 };
 
@@ -39,6 +41,11 @@ std::string CheckArgs(const DatasetArgs& args, dataset::DatasetOptions& options)
   if (!args.classes.empty() && !IsScenesFile(args.scenario.file))
     return "--classes is for a scenes file: a program's objects are numbered by its own classes";
   options.dir = args.output;
+  if (args.append) {
+    if (!std::filesystem::is_directory(args.output + "/train_pbr"))
+      return "--append: " + args.output + " is not a dataset (no train_pbr/) to add images to";
+    options.dir = args.output + ".append";  // joined to DIR when complete
+  }
   return ReadDatasetPictureArgs(args.pictures, options);
 }
 
@@ -83,6 +90,14 @@ class DatasetRun {
       return kExitScenarioError;
     }
     progress_.Erase();
+    if (args_.append) {
+      try {
+        dataset::AppendDataset(args_.output, args_.output + ".append");
+      } catch (const std::exception& error) {
+        PrintError(error.what());
+        return kExitScenarioError;
+      }
+    }
     const double seconds =
         std::chrono::duration<double>(std::chrono::steady_clock::now() - begin).count();
     if (!args_.quiet) {
@@ -206,11 +221,14 @@ CommandRunner ConfigureDatasetCommand(CLI::App& command) {
   command
       .add_option("-o,--output", args->output,
                   "write the dataset to DIR (via DIR.partial, renamed when complete); DIR must "
-                  "not exist or be empty")
+                  "not exist or be empty, unless --append")
       ->type_name("DIR")
       ->required()
       ->check(NonEmptyPath());
   AddDatasetPictureOptions(command, args->pictures);
+  command.add_flag("--append", args->append,
+                   "add these scenes' images to the dataset DIR (their image numbers must be new: "
+                   "another --start)");
   command
       .add_option("--classes", args->classes,
                   "with a scenes file: number objects by this program's classes, as its own "

@@ -179,4 +179,10 @@ void AddSampledScenes(DatasetWriter& writer, const lang::CompiledProgram& progra
 /// parts hold the same picture.
 void MergeDatasets(const std::vector<std::string>& parts, const std::string& out);
 
+/// Grows the dataset `dir` by `addition` (a dataset of other images, numbered by the same
+/// classes): the two merged as MergeDatasets does into DIR.merging, which then takes DIR's
+/// place; `addition` is removed. Throws std::runtime_error, with DIR unchanged and `addition`
+/// kept, when their COCO categories differ or their images overlap.
+void AppendDataset(const std::string& dir, const std::string& addition);
+
 }  // namespace prs::dataset

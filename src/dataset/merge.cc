@@ -127,4 +127,43 @@ void MergeDatasets(const std::vector<std::string>& parts, const std::string& out
   fs::rename(partial, dir);
 }
 
+namespace {
+
+// The categories of the first annotations.json under `root` (null when it has none).
+Json FindCategories(const fs::path& root) {
+  for (const auto& folder : fs::directory_iterator(root / "train_pbr")) {
+    if (fs::exists(folder.path() / "annotations.json"))
+      return ReadJson(folder.path() / "annotations.json")["categories"];
+  }
+  return nullptr;
+}
+
+}  // namespace
+
+void AppendDataset(const std::string& dir, const std::string& addition) {
+  const Json before = FindCategories(dir), added = FindCategories(addition);
+  if (!before.is_null() && !added.is_null() && before != added) {
+    throw std::runtime_error(fmt::format(
+        "the scenes added to {} number their objects by other classes than its own (another "
+        "program?); they are kept in {}",
+        dir, addition));
+  }
+  const std::string merging = dir + ".merging";
+  fs::remove_all(merging);
+  try {
+    MergeDatasets({dir, addition}, merging);
+  } catch (const std::exception& error) {
+    fs::remove_all(merging + ".partial");
+    throw std::runtime_error(fmt::format("{}; {} is unchanged and the new images are in {}",
+                                         error.what(), dir, addition));
+  }
+  // Pictures are hard links: the old tree's removal frees nothing the new one holds.
+  const std::string old = dir + ".replaced";
+  fs::remove_all(old);
+  fs::rename(dir, old);
+  fs::rename(merging, dir);
+  fs::remove_all(old);
+  fs::remove_all(addition);
+}
+
 }  // namespace prs::dataset

@@ -140,6 +140,24 @@ TEST_F(DatasetCommandTest, BadInputIsRefusedWithAReasonAndNothingHalfWritten) {
   EXPECT_FALSE(fs::exists(dir_ / "e.partial"));
 }
 
+TEST_F(DatasetCommandTest, AppendGrowsADatasetIntoOneRunsFiles) {
+  ASSERT_EQ(Dataset("grown", {"-n", "2"}).exit_code, 0);
+  Result r = Dataset("grown", {"-n", "3", "--start", "2", "--append"});
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  ASSERT_EQ(Dataset("whole", {"-n", "5"}).exit_code, 0);
+  EXPECT_TRUE(ReadTree(dir_ / "grown") == ReadTree(dir_ / "whole"));
+  EXPECT_FALSE(fs::exists(dir_ / "grown.append"));
+  // Images it has already: refused, the dataset unchanged, the new images kept aside.
+  r = Dataset("grown", {"-n", "2", "--start", "4", "--append"});
+  EXPECT_EQ(r.exit_code, 1);
+  EXPECT_NE(r.err.find("their ranges overlap"), std::string::npos) << r.err;
+  EXPECT_TRUE(ReadTree(dir_ / "grown") == ReadTree(dir_ / "whole"));
+  EXPECT_TRUE(fs::exists(dir_ / "grown.append"));
+  r = Dataset("nothing", {"--append"});
+  EXPECT_EQ(r.exit_code, 2);
+  EXPECT_NE(r.err.find("is not a dataset"), std::string::npos) << r.err;
+}
+
 TEST_F(DatasetCommandTest, ACampaignMergesIntoOneRunsDataset) {
   const std::string dir = (dir_ / "camp").string();
   Result r = Run({"campaign", "init", dir, Example("table_cube.prs"), "--dataset", "-n", "5",
