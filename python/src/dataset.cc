@@ -1,19 +1,20 @@
 // probrobscene.dataset: scenes written as a BOP and COCO dataset (the dataset library, as
 // `prs dataset` writes it; docs/dataset.md).
+#include "dataset/dataset.h"
+
 #include <pybind11/stl.h>
 
 #include <set>
 
 #include "bindings.h"
-#include "dataset/dataset.h"
 #include "render/scene_input.h"
 
 namespace prs::python {
 namespace {
 
 py::dict WriteDataset(const std::vector<ScenePtr>& scenes, const std::string& dir,
-                      std::vector<std::string> cameras, int width, int height, bool bop,
-                      bool coco, bool jpeg, std::vector<std::string> labels,
+                      std::vector<std::string> cameras, int width, int height, bool bop, bool coco,
+                      bool jpeg, std::vector<std::string> labels,
                       const std::vector<uint64_t>& positions, int threads,
                       std::vector<std::string> class_ids) {
   if (scenes.empty()) throw py::value_error("no scenes to write");
@@ -85,8 +86,8 @@ py::dict WriteDataset(const std::vector<ScenePtr>& scenes, const std::string& di
 
 void BindDataset(py::module_& m) {
   m.def("write_dataset", &WriteDataset, py::arg("scenes"), py::arg("dir"), py::arg("cameras"),
-        py::arg("width"), py::arg("height"), py::arg("bop"), py::arg("coco"), py::arg("jpeg"), py::arg("labels"),
-        py::arg("positions"), py::arg("threads"), py::arg("class_ids"));
+        py::arg("width"), py::arg("height"), py::arg("bop"), py::arg("coco"), py::arg("jpeg"),
+        py::arg("labels"), py::arg("positions"), py::arg("threads"), py::arg("class_ids"));
 }
 
 }  // namespace prs::python

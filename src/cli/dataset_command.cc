@@ -5,8 +5,8 @@
 #include <fmt/format.h>
 
 #include <atomic>
-#include <filesystem>
 #include <chrono>
+#include <filesystem>
 #include <map>
 #include <mutex>
 
@@ -15,6 +15,7 @@
 #include "cli/dataset_options.h"
 #include "cli/design_option.h"
 #include "cli/interrupt.h"
+#include "cli/like_option.h"
 #include "cli/progress.h"
 #include "dataset/dataset.h"
 #include "output/scene_reader.h"
@@ -28,6 +29,7 @@ struct DatasetArgs {
   ScenarioArgs scenario;
   SamplingArgs sampling;
   DesignArgs design;
+  LikeArgs like;
   SceneRangeArgs range;
   std::string output;
   DatasetPictureArgs pictures;
@@ -38,6 +40,8 @@ struct DatasetArgs {
 
 // The checks a usage error reports before anything is written; "" when all is well.
 std::string CheckArgs(const DatasetArgs& args, dataset::DatasetOptions& options) {
+  if (args.like.given() && IsScenesFile(args.scenario.file))
+    return "--like and --near draw scenes from a program: give the .prs file, not a scenes file";
   if (!args.classes.empty() && !IsScenesFile(args.scenario.file))
     return "--classes is for a scenes file: a program's objects are numbered by its own classes";
   options.dir = args.output;
@@ -66,7 +70,7 @@ class DatasetRun {
     // Sampling's share is what the stages leave of the run (exact on one thread).
     try {
       const int code = IsScenesFile(args_.scenario.file) ? RunOnFile(options, writer, images)
-                                                           : RunOnProgram(options, writer, images);
+                                                         : RunOnProgram(options, writer, images);
       if (code != kExitSuccess) return code;
     } catch (const sampling::BatchCancelled&) {
       progress_.Erase();
@@ -109,7 +113,8 @@ class DatasetRun {
                             seconds, seconds > 0 ? double(images) / seconds : 0.0, args_.output));
       const dataset::StageSeconds stages = writer->stage_seconds();
       PrintNote(fmt::format(
-          "time by stage (thread-seconds): rendering {:.2f}, labels {:.2f}, pictures {:.2f}, JSON and "
+          "time by stage (thread-seconds): rendering {:.2f}, labels {:.2f}, pictures {:.2f}, JSON "
+          "and "
           "models {:.2f}; the rest (sampling, scene lines) {:.2f} s of the run",
           stages.render, stages.labels, stages.pictures, stages.json,
           std::max(0.0, seconds - (stages.render + stages.labels + stages.pictures + stages.json) /
@@ -132,6 +137,10 @@ class DatasetRun {
         MakeBatchOptions(args_.sampling, args_.range.count, interrupt_.flag());
     batch.start = args_.range.start;
     if (!PrepareDesign(args_.design, *program_, args_.range, batch.sample, &design_)) {
+      return kExitUsage;
+    }
+    if (args_.like.given() &&
+        !PrepareLike(args_.like, *program_, batch.sample, like_, args_.quiet)) {
       return kExitUsage;
     }
     if (options.cameras.empty()) {
@@ -169,7 +178,8 @@ class DatasetRun {
       }
     }
     if (scenes.empty()) {
-      PrintError(fmt::format("{} has no scene at index {}", args_.scenario.file, args_.range.start));
+      PrintError(
+          fmt::format("{} has no scene at index {}", args_.scenario.file, args_.range.start));
       return kExitScenarioError;
     }
     if (options.cameras.empty()) {
@@ -187,8 +197,9 @@ class DatasetRun {
       if (!program) return kExitScenarioError;
       class_ids = dataset::ListClassIds(*program);
     } else if (!args_.quiet) {
-      PrintNote("objects are numbered by the classes in the order the file first uses them; "
-                "--classes PROGRAM.prs numbers them as that program's own dataset does");
+      PrintNote(
+          "objects are numbered by the classes in the order the file first uses them; "
+          "--classes PROGRAM.prs numbers them as that program's own dataset does");
     }
     writer = std::make_unique<dataset::DatasetWriter>(options, class_ids);
     // Images are numbered by the scene's place in the file (its line keeps its own seed and
@@ -207,6 +218,7 @@ class DatasetRun {
   const DatasetArgs& args_;
   std::unique_ptr<lang::CompiledProgram> program_;
   std::unique_ptr<search::Design> design_;
+  std::unique_ptr<search::GaussianPoints> like_;
   InterruptWatch interrupt_;
   ProgressBar progress_;
   int64_t done_ = 0;
@@ -237,6 +249,7 @@ CommandRunner ConfigureDatasetCommand(CLI::App& command) {
       ->check(NonEmptyPath());
   AddSamplingOptions(command, args->sampling);
   AddDesignOption(command, args->design);
+  AddLikeOptions(command, args->like);
   command.add_flag("-q,--quiet", args->quiet, "no summary on stderr");
   return [args]() -> int {
     if (!CheckSceneRange(args->range)) return kExitUsage;

@@ -23,7 +23,8 @@ void AddDatasetPictureOptions(CLI::App& command, DatasetPictureArgs& args);
 
 /// Fills the cameras, size, formats and labels of `options`; returns the usage error to print
 /// ("--size: ..."), or "" when all is well.
-std::string ReadDatasetPictureArgs(const DatasetPictureArgs& args, dataset::DatasetOptions& options);
+std::string ReadDatasetPictureArgs(const DatasetPictureArgs& args,
+                                   dataset::DatasetOptions& options);
 
 /// The error for scenes without a camera object (`where`: "scene 0 of seed 1").
 std::string DescribeNoCamera(const std::string& where);

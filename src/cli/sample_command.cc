@@ -15,6 +15,7 @@
 #include "output/line_writer.h"
 #include "output/scene_json.h"
 #include "sampling/batch.h"
+#include "cli/like_option.h"
 #include "search/like.h"
 
 namespace prs::cli {
@@ -24,10 +25,7 @@ struct SampleArgs {
   ScenarioArgs scenario;
   SamplingArgs sampling;
   DesignArgs design;
-  std::string like;     // --like RESULTS.jsonl
-  std::string outcome;  // --outcome NAME (with --like)
-  std::string near;     // --near RESULTS.jsonl[:LINE]
-  double scale = 0.05;  // --scale S (with --near)
+  LikeArgs like;  // --like, --outcome, --near, --scale
   SceneRangeArgs range;
   std::string output;  // empty or "-": stdout
   bool quiet = false;
@@ -71,8 +69,9 @@ class SceneWriterRun {
       if (!PrepareDesign(args_.design, program_, args_.range, options.sample, &design_)) {
         return kExitUsage;
       }
-      if (!args_.like.empty() || !args_.near.empty()) {
-        if (!PrepareLike(options.sample)) return kExitUsage;
+      if (args_.like.given()) {
+        if (!PrepareLike(args_.like, program_, options.sample, like_, args_.quiet))
+          return kExitUsage;
       }
       sampling::BatchCallbacks callbacks = MakeCallbacks();
       progress_.Attach(options, callbacks);
@@ -126,66 +125,6 @@ class SceneWriterRun {
     };
     callbacks.consume = [this](sampling::BatchScene&&) { progress_.Update(++done_); };
     return callbacks;
-  }
-
-  // --like: the proposal fitted to the failures of the records file; --near: normals of
-  // standard deviation --scale around one record's coordinates.
-  bool PrepareLike(sampling::SampleOptions& sample) {
-    if (!CheckSamplerTakesPoints(sample, args_.near.empty() ? "--like" : "--near",
-                                 "leave out --sampler (the default, rejection, is exact for any "
-                                 "program)")) {
-      return false;
-    }
-    std::string path = args_.near.empty() ? args_.like : args_.near;
-    int64_t line = 0;
-    const size_t colon = path.rfind(':');
-    if (!args_.near.empty() && colon != std::string::npos && colon + 1 < path.size() &&
-        path.find_first_not_of("0123456789", colon + 1) == std::string::npos) {
-      const char* digits = path.c_str() + colon + 1;
-      if (std::from_chars(digits, path.c_str() + path.size(), line).ec != std::errc()) {
-        PrintError("--near: no such line " + path.substr(colon + 1) + " in " +
-                   path.substr(0, colon));
-        return false;
-      }
-      path.resize(colon);
-    }
-    const auto lines = ReadLines(path);
-    if (!lines) return false;
-    const int dimension = static_cast<int>(sampling::DescribeCoordinates(program_, sample).size());
-    try {
-      if (dimension == 0) {
-        throw std::runtime_error(std::string(args_.near.empty() ? "--like" : "--near") +
-                                 ": this program draws nothing at random, so every scene is "
-                                 "like every other");
-      }
-      if (!args_.near.empty()) {
-        const std::vector<double> centre = search::ReadRecordCoordinates(
-            *lines, path, line, search::CalcSpecHash(program_), dimension);
-        like_ = std::make_unique<search::GaussianPoints>(
-            centre, std::vector<double>(centre.size(), args_.scale), 0.0);
-        sample.points = like_.get();
-        if (!args_.quiet) {
-          PrintNote(fmt::format("drawing scenes near {} {} (scale {})", path,
-                                line ? fmt::format("line {}", line) : "(its first failure)",
-                                args_.scale));
-        }
-        return true;
-      }
-      const search::FailureSet failures = search::ReadFailures(
-          *lines, args_.like, args_.outcome, search::CalcSpecHash(program_), dimension);
-      like_ = std::make_unique<search::GaussianPoints>(search::FitLike(failures));
-      if (!args_.quiet) {
-        PrintNote(fmt::format("drawing scenes like the {} of {}",
-                              FormatCount(static_cast<int64_t>(failures.coordinates.size()),
-                                          args_.outcome.empty() ? "failure" : args_.outcome),
-                              args_.like));
-      }
-    } catch (const std::runtime_error& error) {
-      PrintError(error.what());
-      return false;
-    }
-    sample.points = like_.get();
-    return true;
   }
 
   // The scenes before the failing one stay written (in OUT.partial for a file).
@@ -271,33 +210,7 @@ CommandRunner ConfigureSampleCommand(CLI::App& command) {
       ->check(NonEmptyPath());
   AddSamplingOptions(command, args->sampling);
   AddDesignOption(command, args->design);
-  CLI::Option* like =
-      command
-          .add_option("--like", args->like,
-                      "draw scenes like the failing episodes of RESULTS (prs search -o, or prs "
-                      "test --design -o): each still satisfies the whole program")
-          ->type_name("RESULTS")
-          ->check(NonEmptyPath())
-          ->excludes(command.get_option("--design"));
-  command.add_option("--outcome", args->outcome, "with --like: only episodes with this outcome")
-      ->type_name("NAME")
-      ->needs(like);
-  CLI::Option* near =
-      command
-          .add_option("--near", args->near,
-                      "draw scenes near one episode of RESULTS (LINE, or its first failure): "
-                      "small changes that keep the whole program satisfied")
-          ->type_name("RESULTS[:LINE]")
-          ->check(NonEmptyPath())
-          ->excludes(command.get_option("--design"))
-          ->excludes(like);
-  command
-      .add_option("--scale", args->scale,
-                  "with --near: the standard deviation of the changes, in scene coordinates")
-      ->type_name("S")
-      ->check(CLI::Range(1e-6, 1.0))
-      ->capture_default_str()
-      ->needs(near);
+  AddLikeOptions(command, args->like);
   command.add_flag("-q,--quiet", args->quiet, "no summary on stderr");
   return [args] { return RunSample(*args); };
 }

@@ -53,7 +53,7 @@ std::vector<std::string> ListDefaultCameras(const lang::CompiledProgram& program
 /// pixel (u, v) is column u, row v from the top-left, the centre of the top-left pixel at
 /// (0, 0). A world point p_W (metres) is seen at K (R_CW p_W + p_CW).
 struct PinholeCamera {
-  int width = 0, height = 0;  // pixels
+  int width = 0, height = 0;              // pixels
   double fx = 0, fy = 0, cx = 0, cy = 0;  // pixels
   Eigen::Matrix3d R_CW = Eigen::Matrix3d::Identity();
   Eigen::Vector3d p_CW = Eigen::Vector3d::Zero();  // metres: the world origin in camera frame
@@ -98,10 +98,10 @@ struct LabelledView {
 
 /// Where a dataset's time went, in seconds of the threads that spent it.
 struct StageSeconds {
-  double render = 0;  // colour, depth and segmentation passes
-  double labels = 0;  // masks, counts, boxes, poses, RLE
+  double render = 0;    // colour, depth and segmentation passes
+  double labels = 0;    // masks, counts, boxes, poses, RLE
   double pictures = 0;  // encoding and writing the pictures and masks (PNG, JPEG)
-  double json = 0;    // the chunks' JSON files and models
+  double json = 0;      // the chunks' JSON files and models
 };
 
 /// Renders `scene` through `camera` (a name as DatasetOptions::cameras) and labels every object
@@ -123,8 +123,8 @@ struct SceneLabels;
 class DatasetWriter {
  public:
   /// Makes DIR.partial. Throws std::invalid_argument for no camera, a size under 16 pixels or
-  /// images_per_chunk under 1. `class_ids`: obj_id i + 1 for class_ids[i] (the program's classes, so
-  /// that ids agree across runs of one program). Throws std::runtime_error when DIR exists and
+  /// images_per_chunk under 1. `class_ids`: obj_id i + 1 for class_ids[i] (the program's classes,
+  /// so that ids agree across runs of one program). Throws std::runtime_error when DIR exists and
   /// is not empty, when DIR.partial exists (an earlier run's), or when it cannot be made.
   DatasetWriter(DatasetOptions options, std::vector<std::string> class_ids);
   ~DatasetWriter();

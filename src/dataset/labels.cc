@@ -160,14 +160,13 @@ LabelledView RenderLabelledView(render::Renderer& renderer, const render::Render
     if (&o == &viewpoint || o.shape == render::ObjectShape::kPoint ||
         o.shape == render::ObjectShape::kLight)
       continue;
-    if (!options.labels.empty() &&
-        std::find(options.labels.begin(), options.labels.end(), o.class_name) ==
-            options.labels.end())
+    if (!options.labels.empty() && std::find(options.labels.begin(), options.labels.end(),
+                                             o.class_name) == options.labels.end())
       continue;
     const auto id = std::find(class_ids.begin(), class_ids.end(), o.class_name);
     if (id == class_ids.end())
-      throw std::invalid_argument(fmt::format("object {} has class {}, which has no id", o.name,
-                                              o.class_name));
+      throw std::invalid_argument(
+          fmt::format("object {} has class {}, which has no id", o.name, o.class_name));
     labelled.push_back(int(i));
     obj_ids.push_back(int(id - class_ids.begin()) + 1);
   }

@@ -53,7 +53,7 @@ void MergeDatasets(const std::vector<std::string>& parts, const std::string& out
         "over another)",
         out));
   }
-  fs::remove_all(partial);  // an earlier merge's: everything in it comes from the parts
+  fs::remove_all(partial);              // an earlier merge's: everything in it comes from the parts
   std::map<std::string, Chunk> chunks;  // by folder name: "000000", ...
   std::map<int, std::pair<fs::path, Json>> models;  // obj_id -> its first part's file and info
   bool have_camera = false;
@@ -108,7 +108,8 @@ void MergeDatasets(const std::vector<std::string>& parts, const std::string& out
   for (const auto& [name, chunk] : chunks) {
     const fs::path folder = partial / "train_pbr" / name;
     fs::create_directories(folder);
-    for (const auto& [file, json] : chunk.bop) WriteFileAtomically(folder / file, FormatBopJson(json));
+    for (const auto& [file, json] : chunk.bop)
+      WriteFileAtomically(folder / file, FormatBopJson(json));
     if (!chunk.coco.is_null())
       WriteFileAtomically(folder / "annotations.json", FormatCocoJson(chunk.coco));
     WriteFileAtomically(folder / "scenes.jsonl", chunk.scenes);

@@ -1,6 +1,8 @@
 // BOP's models/ folder: each labelled class's shape as a PLY file in millimetres (in the
 // object's own frame, the one cam_R_m2c and cam_t_m2c place), and models_info.json with its
 // extent, diameter and symmetries.
+#include "dataset/models.h"
+
 #include <fmt/format.h>
 
 #include <algorithm>
@@ -9,8 +11,6 @@
 #include <cstring>
 #include <fstream>
 #include <stdexcept>
-
-#include "dataset/models.h"
 
 namespace prs::dataset {
 namespace {

@@ -11,9 +11,9 @@
 #include <fstream>
 #include <map>
 #include <mutex>
-#include <thread>
 #include <nlohmann/json.hpp>
 #include <stdexcept>
+#include <thread>
 
 #include "dataset/dataset.h"
 #include "dataset/files.h"
@@ -49,7 +49,7 @@ struct ImageRecord {
 
 struct SceneLabels {
   uint64_t index = 0;  // the scene's position
-  std::string line;  // the scene's line with its images and features
+  std::string line;    // the scene's line with its images and features
   std::vector<ImageRecord> images;
   std::vector<std::pair<int, exporting::Body>> bodies;  // obj_id and a labelled object's body
 };
@@ -99,7 +99,7 @@ struct DatasetWriter::State {
     int64_t images_in = 0;
   };
   std::map<uint64_t, Chunk> chunks;
-  std::map<int, exporting::Body> models;  // obj_id -> its class's first labelled object
+  std::map<int, exporting::Body> models;   // obj_id -> its class's first labelled object
   std::optional<ImageRecord> first_image;  // for camera.json
   int64_t images = 0, scenes = 0;
   bool finished = false;
@@ -177,14 +177,13 @@ struct DatasetWriter::State {
     Chunk& chunk = chunks[number];
     const std::string key = std::to_string(im_id);
     const PinholeCamera& c = image.pinhole;
-    chunk.scene_camera[key] = {
-        {"cam_K", {c.fx, 0.0, c.cx, 0.0, c.fy, c.cy, 0.0, 0.0, 1.0}},
-        {"cam_R_w2c", FormatMatrix(c.R_CW)},
-        {"cam_t_w2c", FormatVector(1000.0 * c.p_CW)},
-        {"depth_scale", image.depth_scale},
-        {"width", c.width},
-        {"height", c.height},
-        {"camera", image.camera}};
+    chunk.scene_camera[key] = {{"cam_K", {c.fx, 0.0, c.cx, 0.0, c.fy, c.cy, 0.0, 0.0, 1.0}},
+                               {"cam_R_w2c", FormatMatrix(c.R_CW)},
+                               {"cam_t_w2c", FormatVector(1000.0 * c.p_CW)},
+                               {"depth_scale", image.depth_scale},
+                               {"width", c.width},
+                               {"height", c.height},
+                               {"camera", image.camera}};
     Json gt = Json::array(), info = Json::array();
     for (size_t k = 0; k < image.objects.size(); ++k) {
       const ImageRecord::Object& o = image.objects[k];
@@ -330,7 +329,8 @@ std::shared_ptr<SceneLabels> DatasetWriter::RenderScene(const sampling::SampledS
     s.render_ns += int64_t(view.render_s * 1e9);
     s.labels_ns += int64_t(view.label_s * 1e9) + ns(writing - encoding);
     s.pictures_ns += ns(written - writing);
-    images.push_back({{"chunk", s.chunk_of(image.image)}, {"im_id", im_id}, {"camera", view.camera}});
+    images.push_back(
+        {{"chunk", s.chunk_of(image.image)}, {"im_id", im_id}, {"camera", view.camera}});
     labels->images.push_back(std::move(image));
   }
   // The scene's line as `prs sample` writes it, with the images it made and its features (the
@@ -395,9 +395,10 @@ int64_t DatasetWriter::Finish() {
   const auto begin = std::chrono::steady_clock::now();
   if (s.first_image && s.options.bop) {
     const PinholeCamera& c = s.first_image->pinhole;
-    const Json camera = {{"cx", c.cx},          {"cy", c.cy}, {"depth_scale", s.first_image->depth_scale},
-                         {"fx", c.fx},          {"fy", c.fy}, {"height", c.height},
-                         {"width", c.width}};
+    const Json camera = {
+        {"cx", c.cx},      {"cy", c.cy}, {"depth_scale", s.first_image->depth_scale},
+        {"fx", c.fx},      {"fy", c.fy}, {"height", c.height},
+        {"width", c.width}};
     WriteFileAtomically(s.partial / "camera.json", FormatBopJson(camera));
     fs::create_directories(s.partial / "models");
     Json info = Json::object();
@@ -408,9 +409,9 @@ int64_t DatasetWriter::Finish() {
     }
     WriteFileAtomically(s.partial / "models" / "models_info.json", FormatBopJson(info));
   }
-  s.json_ns += std::chrono::duration_cast<std::chrono::nanoseconds>(
-                   std::chrono::steady_clock::now() - begin)
-                   .count();
+  s.json_ns +=
+      std::chrono::duration_cast<std::chrono::nanoseconds>(std::chrono::steady_clock::now() - begin)
+          .count();
   std::error_code error;
   if (fs::exists(s.dir, error)) fs::remove(s.dir);  // empty, as the constructor checked
   fs::rename(s.partial, s.dir);

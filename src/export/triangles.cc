@@ -82,7 +82,8 @@ TriangleMesh MakeBodyTriangles(const Body& body) {
   const bool polytope = body.shape == Shape::kSphere || body.shape == Shape::kCapsule;
   if ((body.shape == Shape::kMesh || polytope) && body.mesh)
     return MakeTriangleMesh(*body.mesh, body.mesh_scale);
-  if (body.shape == Shape::kCylinder) return MakeCylinderMesh(body.cylinder_radius(), body.size.z());
+  if (body.shape == Shape::kCylinder)
+    return MakeCylinderMesh(body.cylinder_radius(), body.size.z());
   if (body.shape == Shape::kNone) return {};
   return MakeBoxMesh(body.size);
 }

@@ -23,8 +23,9 @@ std::map<std::string, std::string> ReadTree(const fs::path& root) {
 class DatasetCommandTest : public PrsTest {
  protected:
   Result Dataset(const std::string& out, std::vector<std::string> more) {
-    std::vector<std::string> args = {"dataset", Example("table_cube.prs"), "-s", "1",
-                                     "--size", "160x120", "-o", (dir_ / out).string()};
+    std::vector<std::string> args = {
+        "dataset", Example("table_cube.prs"), "-s", "1", "--size", "160x120",
+        "-o",      (dir_ / out).string()};
     args.insert(args.end(), more.begin(), more.end());
     return Run(args);
   }
@@ -55,7 +56,8 @@ TEST_F(DatasetCommandTest, SameBytesForAnyThreadCountAndSplit) {
   std::set<int64_t> annotations, images;
   size_t total = 0;
   for (const char* shard : {"a", "b"}) {
-    const auto coco = nlohmann::json::parse(ReadText(dir_ / shard / "train_pbr/000000/annotations.json"));
+    const auto coco =
+        nlohmann::json::parse(ReadText(dir_ / shard / "train_pbr/000000/annotations.json"));
     for (const auto& a : coco["annotations"]) annotations.insert(a["id"].get<int64_t>()), ++total;
     for (const auto& i : coco["images"]) images.insert(i["id"].get<int64_t>());
   }
@@ -91,7 +93,8 @@ TEST_F(DatasetCommandTest, AScenesFileGivesTheProgramsImagesAndItsLinesReadBack)
   EXPECT_EQ(first["seed"], 1);
   EXPECT_EQ(first["images"][0]["im_id"], 0);
   EXPECT_TRUE(first["features"].contains("t.x"));
-  const Result again = Run({"export", lines, "--format", "mjcf", "-o", (dir_ / "exported").string()});
+  const Result again =
+      Run({"export", lines, "--format", "mjcf", "-o", (dir_ / "exported").string()});
   EXPECT_EQ(again.exit_code, 0) << again.err;
 }
 
@@ -138,6 +141,37 @@ TEST_F(DatasetCommandTest, BadInputIsRefusedWithAReasonAndNothingHalfWritten) {
   EXPECT_EQ(r.exit_code, 2);
   EXPECT_NE(r.err.find("no camera object"), std::string::npos) << r.err;
   EXPECT_FALSE(fs::exists(dir_ / "e.partial"));
+}
+
+TEST_F(DatasetCommandTest, LikeDrawsTheScenesPrsSampleLikeDraws) {
+  const std::string records = (dir_ / "search.jsonl").string();
+  ASSERT_EQ(Run({"search", Example("table_cube.prs"), "--controller", "planted-1-percent",
+                 "--budget", "120", "-s", "2", "-o", records})
+                .exit_code,
+            0);
+  Result r = Dataset("like", {"-n", "3", "--like", records});
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  EXPECT_NE(r.err.find("drawing scenes like the"), std::string::npos) << r.err;
+  ASSERT_EQ(Run({"sample", Example("table_cube.prs"), "-s", "1", "-n", "3", "--like", records,
+                 "-o", (dir_ / "like.jsonl").string()})
+                .exit_code,
+            0);
+  ASSERT_EQ(Run({"dataset", (dir_ / "like.jsonl").string(), "-n", "3", "--size", "160x120",
+                 "--classes", Example("table_cube.prs"), "-o", (dir_ / "file").string()})
+                .exit_code,
+            0);
+  // The same files but the scene lines, which from the program carry the scene coordinates.
+  auto from_program = ReadTree(dir_ / "like"), from_file = ReadTree(dir_ / "file");
+  const std::string lines = from_program.at("train_pbr/000000/scenes.jsonl");
+  EXPECT_NE(lines.find("\"coordinates\":["), std::string::npos);
+  from_program.erase("train_pbr/000000/scenes.jsonl");
+  from_file.erase("train_pbr/000000/scenes.jsonl");
+  EXPECT_GT(from_file.size(), 3u * 14);
+  EXPECT_TRUE(from_program == from_file);
+  r = Run({"dataset", (dir_ / "like.jsonl").string(), "--like", records, "-o",
+           (dir_ / "x").string()});
+  EXPECT_EQ(r.exit_code, 2);
+  EXPECT_NE(r.err.find("give the .prs file"), std::string::npos) << r.err;
 }
 
 TEST_F(DatasetCommandTest, AppendGrowsADatasetIntoOneRunsFiles) {

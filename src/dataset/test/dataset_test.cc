@@ -2,6 +2,8 @@
 // the writer: a pinhole camera derived in this file from the camera object's pose, box corners
 // projected and rays cast at boxes by this file's own code, PNG files read back with libpng,
 // COCO's RLE decoded by a decoder written here, and PLY models parsed here.
+#include "dataset/dataset.h"
+
 #include <fmt/format.h>
 #include <gtest/gtest.h>
 #include <png.h>
@@ -15,7 +17,6 @@
 #include <set>
 #include <sstream>
 
-#include "dataset/dataset.h"
 #include "lang/lang.h"
 #include "sampling/sampler.h"
 
@@ -79,8 +80,7 @@ struct TestCamera {
   double f, cx, cy;
   int width, height;
 
-  TestCamera(const lang::SceneObject& camera, double fovy_deg, int w, int h)
-      : width(w), height(h) {
+  TestCamera(const lang::SceneObject& camera, double fovy_deg, int w, int h) : width(w), height(h) {
     const Eigen::Matrix3d R_WO = camera.R_WO.toRotationMatrix();
     const Eigen::Vector3d forward = R_WO.col(1), up = R_WO.col(2);
     R_CW.row(0) = forward.cross(up);
@@ -261,7 +261,8 @@ class DatasetTest : public ::testing::Test {
  protected:
   static void SetUpTestSuite() {
     program_ = Compile(kProgram).release();
-    dir_ = new fs::path(fs::temp_directory_path() / ("prs_dataset_test_" + std::to_string(getpid())));
+    dir_ =
+        new fs::path(fs::temp_directory_path() / ("prs_dataset_test_" + std::to_string(getpid())));
     fs::remove_all(*dir_);
     DatasetOptions options;
     options.dir = (*dir_ / "ds").string();
@@ -334,7 +335,8 @@ TEST_F(DatasetTest, FullMasksAndBoxesMatchTheProjectedBoxes) {
     for (const Eigen::Vector3d& p : BoxCorners(FindObject(Scene(), names[k])))
       projected.push_back(camera.Project(p));
     const std::vector<Eigen::Vector2d> hull = Hull(projected);
-    const auto mask = ReadPng(Chunk() / "mask" / fmt::format("000000_{:06d}.png", k), PNG_FORMAT_GRAY);
+    const auto mask =
+        ReadPng(Chunk() / "mask" / fmt::format("000000_{:06d}.png", k), PNG_FORMAT_GRAY);
     // Every pixel whose centre is more than a pixel inside the hull is in the mask, every one
     // more than a pixel outside is not; the count is the hull's within its border pixels.
     int64_t count = 0, inside = 0, border = 0;
@@ -432,13 +434,16 @@ TEST_F(DatasetTest, ModelVerticesProjectIntoTheFullMask) {
   const std::vector<double> K = cam["cam_K"];
   for (int k = 0; k < 2; ++k) {
     const int obj_id = gt[k]["obj_id"];
-    const auto mask = ReadPng(Chunk() / "mask" / fmt::format("000000_{:06d}.png", k), PNG_FORMAT_GRAY);
+    const auto mask =
+        ReadPng(Chunk() / "mask" / fmt::format("000000_{:06d}.png", k), PNG_FORMAT_GRAY);
     const std::vector<double> R = gt[k]["cam_R_m2c"], t = gt[k]["cam_t_m2c"];
-    const auto vertices = ReadPlyVertices(*dir_ / "ds" / "models" / fmt::format("obj_{:06d}.ply", obj_id));
+    const auto vertices =
+        ReadPlyVertices(*dir_ / "ds" / "models" / fmt::format("obj_{:06d}.ply", obj_id));
     ASSERT_FALSE(vertices.empty());
     for (const Eigen::Vector3d& p_mm : vertices) {
       Eigen::Vector3d q;
-      for (int i = 0; i < 3; ++i) q[i] = R[3 * i] * p_mm[0] + R[3 * i + 1] * p_mm[1] + R[3 * i + 2] * p_mm[2] + t[i];
+      for (int i = 0; i < 3; ++i)
+        q[i] = R[3 * i] * p_mm[0] + R[3 * i + 1] * p_mm[1] + R[3 * i + 2] * p_mm[2] + t[i];
       const double u = K[0] * q[0] / q[2] + K[2], v = K[4] * q[1] / q[2] + K[5];
       // A corner lies on the silhouette's edge: one of the pixels around it is in the mask.
       bool near = false;
@@ -452,7 +457,8 @@ TEST_F(DatasetTest, ModelVerticesProjectIntoTheFullMask) {
   }
   const json models = ReadJson(*dir_ / "ds" / "models" / "models_info.json");
   // The crate, 300 x 200 x 150 mm: its diagonal, and only the half turns about each axis.
-  EXPECT_NEAR(models["3"]["diameter"].get<double>(), std::sqrt(300. * 300 + 200 * 200 + 150 * 150), 1e-3);
+  EXPECT_NEAR(models["3"]["diameter"].get<double>(), std::sqrt(300. * 300 + 200 * 200 + 150 * 150),
+              1e-3);
   EXPECT_NEAR(models["3"]["size_x"].get<double>(), 300, 1e-3);
   EXPECT_EQ(models["3"]["symmetries_discrete"].size(), 3u);
   // The lid, 120 x 120 x 20 mm: also the quarter turns about z (and their compositions).
@@ -492,7 +498,8 @@ TEST_F(DatasetTest, CocoRleDecodedHereEqualsTheVisibleMasks) {
 }
 
 TEST(DatasetWriterTest, RefusesAnotherDatasetAndMissingIntrinsics) {
-  const fs::path dir = fs::temp_directory_path() / ("prs_dataset_refuse_" + std::to_string(getpid()));
+  const fs::path dir =
+      fs::temp_directory_path() / ("prs_dataset_refuse_" + std::to_string(getpid()));
   fs::remove_all(dir);
   fs::create_directories(dir);
   std::ofstream(dir / "keep.txt") << "a user's file";
@@ -569,7 +576,8 @@ TEST(CocoRleTest, EncodesRunsDownTheColumnsAsPycocotoolsDoes) {
   // Long runs and differences to the run two before, negative ones too: decoded back here.
   std::vector<uint8_t> big(200 * 150, 0);
   for (int v = 0; v < 150; ++v)
-    for (int u = 0; u < 200; ++u) big[v * 200 + u] = (u - 90) * (u - 90) + (v - 60) * (v - 60) < 900 || u > 190;
+    for (int u = 0; u < 200; ++u)
+      big[v * 200 + u] = (u - 90) * (u - 90) + (v - 60) * (v - 60) < 900 || u > 190;
   EXPECT_EQ(DecodeRle(EncodeCocoRle(big, 200, 150), 200, 150), big);
 }
 
