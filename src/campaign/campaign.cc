@@ -82,11 +82,6 @@ std::string ReadFileText(const std::string& path, bool* ok) {
   return text.str();
 }
 
-void WriteFileAtomically(const std::string& path, const std::string& text) {
-  output::LineWriter writer(path);
-  if (!text.empty()) writer.AddLine(std::string_view(text).substr(0, text.size() - 1));
-  writer.Commit();
-}
 
 // A search or estimate campaign's generations are cut into shards one by one.
 namespace {

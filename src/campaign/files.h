@@ -4,13 +4,14 @@
 
 #include <string>
 
+#include "output/line_writer.h"
+
 namespace prs::campaign {
 
 /// The whole file; *ok is false when it cannot be opened (then the text is empty).
 std::string ReadFileText(const std::string& path, bool* ok);
 
-/// Writes `text` (empty, or ending in a newline) to `path` atomically: PATH.partial, fsync,
-/// rename. Throws what output::LineWriter throws.
-void WriteFileAtomically(const std::string& path, const std::string& text);
+/// Writes a file whole or not at all (output/line_writer.h).
+using output::WriteFileAtomically;
 
 }  // namespace prs::campaign

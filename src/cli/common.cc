@@ -16,7 +16,6 @@
 #include <sstream>
 #include <thread>
 
-#include "output/line_writer.h"
 #include "sampling/gibbs.h"
 #include "sampling/partial_rejection.h"
 
@@ -432,12 +431,6 @@ bool IsBlankLine(std::string_view line) {
 void PrintNoScenes(const std::string& path) {
   PrintError(
       fmt::format("{} has no scenes: it is empty (write one with prs sample -o FILE)", path));
-}
-
-void WriteTextFile(const std::string& path, const std::string& text) {
-  output::LineWriter file(path);
-  file.AddLine(std::string_view(text).substr(0, text.empty() ? 0 : text.size() - 1));
-  file.Commit();
 }
 
 }  // namespace prs::cli

@@ -171,8 +171,5 @@ bool IsBlankLine(std::string_view line);
 int64_t CountNonBlank(const std::vector<std::string>& lines);
 /// Prints that the scenes file `path` holds no scene (an error for every command reading one).
 void PrintNoScenes(const std::string& path);
-/// Writes `text` (a document ending in a newline) to `path`, all or nothing
-/// (output::LineWriter); throws what LineWriter throws.
-void WriteTextFile(const std::string& path, const std::string& text);
 
 }  // namespace prs::cli

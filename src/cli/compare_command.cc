@@ -9,6 +9,7 @@
 
 #include "cli/commands.h"
 #include "cli/common.h"
+#include "output/line_writer.h"
 #include "search/compare.h"
 
 namespace prs::cli {
@@ -35,7 +36,7 @@ int RunCompare(const CompareArgs& args) {
       std::cout << text << std::flush;
       return kExitSuccess;
     }
-    WriteTextFile(args.output, text);
+    output::WriteFileAtomically(args.output, text);
     PrintNote(fmt::format("{} scenes compared ({} fixed, {} broken, McNemar p = {:.4g}); written "
                           "to {}",
                           comparison.scenes.size(), comparison.fixed.size(),

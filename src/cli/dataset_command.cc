@@ -4,11 +4,8 @@
 // when complete.
 #include <fmt/format.h>
 
-#include <atomic>
 #include <chrono>
 #include <filesystem>
-#include <map>
-#include <mutex>
 
 #include "cli/commands.h"
 #include "cli/common.h"

@@ -13,6 +13,7 @@
 
 #include "cli/commands.h"
 #include "cli/common.h"
+#include "output/line_writer.h"
 #include "search/report.h"
 
 namespace prs::cli {
@@ -137,8 +138,8 @@ int RunReport(const ReportArgs& args) {
       std::cout << markdown << std::flush;
       return kExitSuccess;
     }
-    if (!svg.empty()) WriteTextFile(options.svg_path, svg);
-    WriteTextFile(args.output, markdown);
+    if (!svg.empty()) output::WriteFileAtomically(options.svg_path, svg);
+    output::WriteFileAtomically(args.output, markdown);
     PrintNote(fmt::format("report of {} written to {}{}", FormatCount(records.size(), "episode"),
                           args.output, svg.empty() ? "" : " (plot: " + options.svg_path + ")"));
     return kExitSuccess;

@@ -6,6 +6,8 @@
 #include <nlohmann/json.hpp>
 #include <string>
 
+#include "output/line_writer.h"
+
 namespace prs::dataset {
 
 using Json = nlohmann::ordered_json;
@@ -15,8 +17,10 @@ inline std::string FormatBopJson(const Json& json) { return json.dump(1) + "\n";
 /// COCO's annotations.json: one line.
 inline std::string FormatCocoJson(const Json& json) { return json.dump() + "\n"; }
 
-/// Written whole or not at all: to PATH.tmp, then renamed. Throws std::runtime_error.
-void WriteFileAtomically(const std::filesystem::path& path, const std::string& bytes);
+/// Written whole or not at all (output/line_writer.h). Throws std::runtime_error.
+inline void WriteFileAtomically(const std::filesystem::path& path, const std::string& bytes) {
+  output::WriteFileAtomically(path.string(), bytes);
+}
 
 /// The whole file. Throws std::runtime_error naming it when it cannot be read.
 std::string ReadFileBytes(const std::filesystem::path& path);

@@ -177,14 +177,13 @@ LabelledView RenderLabelledView(render::Renderer& renderer, const render::Render
             : fmt::format("the scene has no object of class {} to label (--label)",
                           JoinNames(options.labels)));
   }
-  const render::CameraPose pose = render::CalcViewPose(scene, view);
   LabelledView out;
   out.camera = viewpoint.name;
   const auto begin = std::chrono::steady_clock::now();
   out.picture = renderer.RenderLabelled(scene, view, labelled);
   const auto drawn = std::chrono::steady_clock::now();
   out.render_s = std::chrono::duration<double>(drawn - begin).count();
-  out.pinhole = CalcPinholeCamera(pose, viewpoint.fovy_deg, view.width, view.height);
+  out.pinhole = CalcPinholeCamera(out.picture.pose, viewpoint.fovy_deg, view.width, view.height);
   out.depth_scale = ChooseDepthScale(out.picture.depth);
   const size_t pixels = size_t(view.width) * size_t(view.height);
   for (size_t k = 0; k < labelled.size(); ++k) {

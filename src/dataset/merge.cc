@@ -25,8 +25,8 @@ Json ReadJson(const fs::path& path) {
   }
 }
 
-// A picture into the merged tree: a hard link, or a copy where links cannot go.
-void PlacePicture(const fs::path& from, const fs::path& to) {
+// A picture or model into the merged tree: a hard link, or a copy where links cannot go.
+void PlaceFile(const fs::path& from, const fs::path& to) {
   if (fs::exists(to)) {
     throw std::runtime_error(
         fmt::format("{} is in two of the datasets merged: their ranges overlap", to.string()));
@@ -82,7 +82,7 @@ void MergeDatasets(const std::vector<std::string>& parts, const std::string& out
         if (!fs::is_directory(folder.path() / kind)) continue;
         fs::create_directories(target / kind);
         for (const auto& picture : fs::directory_iterator(folder.path() / kind)) {
-          PlacePicture(picture.path(), target / kind / picture.path().filename());
+          PlaceFile(picture.path(), target / kind / picture.path().filename());
         }
       }
       for (const char* file : kBopFiles) {
@@ -118,7 +118,7 @@ void MergeDatasets(const std::vector<std::string>& parts, const std::string& out
     fs::create_directories(partial / "models");
     Json info = Json::object();
     for (const auto& [obj_id, model] : models) {
-      PlacePicture(model.first, partial / "models" / model.first.filename());
+      PlaceFile(model.first, partial / "models" / model.first.filename());
       info[std::to_string(obj_id)] = model.second;
     }
     WriteFileAtomically(partial / "models" / "models_info.json", FormatBopJson(info));

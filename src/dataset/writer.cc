@@ -5,6 +5,7 @@
 // models. Everything goes to DIR.partial, renamed to DIR when complete.
 #include <fmt/format.h>
 
+#include <algorithm>
 #include <atomic>
 #include <chrono>
 #include <filesystem>
@@ -51,7 +52,8 @@ struct SceneLabels {
   uint64_t index = 0;  // the scene's position
   std::string line;    // the scene's line with its images and features
   std::vector<ImageRecord> images;
-  std::vector<std::pair<int, exporting::Body>> bodies;  // obj_id and a labelled object's body
+  // Per class labelled in the scene, its obj_id and its first labelled object's body.
+  std::vector<std::pair<int, exporting::Body>> bodies;
 };
 
 namespace {
@@ -70,16 +72,6 @@ Json FormatBox(const PixelBox& b) { return Json::array({b[0], b[1], b[2], b[3]})
 std::string ImageName(uint64_t im_id) { return fmt::format("{:06d}", im_id); }
 
 }  // namespace
-
-void WriteFileAtomically(const fs::path& path, const std::string& bytes) {
-  const fs::path temporary = path.string() + ".tmp";
-  {
-    std::ofstream out(temporary, std::ios::binary);
-    out.write(bytes.data(), std::streamsize(bytes.size()));
-    if (!out) throw std::runtime_error("cannot write " + temporary.string());
-  }
-  fs::rename(temporary, path);
-}
 
 std::string ReadFileBytes(const fs::path& path) {
   std::ifstream in(path, std::ios::binary);
@@ -296,7 +288,11 @@ std::shared_ptr<SceneLabels> DatasetWriter::RenderScene(const sampling::SampledS
       image.objects.push_back({o.obj_id, o.R_CO, o.p_CO_mm, o.bbox_obj, o.bbox_visib,
                                o.px_count_all, o.px_count_valid, o.px_count_visib, o.visib_fract,
                                s.options.coco ? EncodeCocoRle(o.mask_visib, w, h) : ""});
-      labels->bodies.emplace_back(o.obj_id, bodies.bodies[size_t(o.object)]);
+      // A model is its class's first labelled object: one body per class and scene suffices.
+      const auto& kept = labels->bodies;
+      if (std::none_of(kept.begin(), kept.end(),
+                       [&](const auto& b) { return b.first == o.obj_id; }))
+        labels->bodies.emplace_back(o.obj_id, bodies.bodies[size_t(o.object)]);
     }
     const auto writing = std::chrono::steady_clock::now();
     const uint64_t im_id = s.im_id_of(image.image);

@@ -118,4 +118,10 @@ void LineWriter::ThrowIoError(const char* action, const std::string& path) const
   throw std::runtime_error(std::string(action) + " '" + path + "': " + std::strerror(errno));
 }
 
+void WriteFileAtomically(const std::string& path, std::string_view bytes) {
+  LineWriter writer(path);
+  writer.AddLines(bytes, 0);
+  writer.Commit();
+}
+
 }  // namespace prs::output

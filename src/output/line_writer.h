@@ -59,4 +59,9 @@ class LineWriter {
   std::chrono::steady_clock::time_point last_write_;
 };
 
+/// Writes `bytes` to `path` whole or not at all, as LineWriter commits a file (PATH.partial,
+/// fsync, rename): the small files of campaigns, datasets and reports. Throws
+/// std::runtime_error naming the file and the reason.
+void WriteFileAtomically(const std::string& path, std::string_view bytes);
+
 }  // namespace prs::output

@@ -142,6 +142,7 @@ inline constexpr int32_t kNoObject = -1;
 /// shows, and the silhouettes of the objects asked for, each drawn alone (1 where it covers the
 /// pixel, whatever is in front of it).
 struct LabelledPicture {
+  CameraPose pose;  // where it was taken from (CalcViewPose)
   Image rgb;
   DepthImage depth;
   ObjectIdImage visible;
@@ -180,7 +181,9 @@ class Renderer {
 
  private:
   // With the context current: fills MuJoCo's scene for `options`: geoms, camera, lights.
-  CameraPose Prepare(const RenderScene& scene, const RenderOptions& options);
+  // Returns the pose, and sets *fovy_deg (when not null) to the view's field of view.
+  CameraPose Prepare(const RenderScene& scene, const RenderOptions& options,
+                     double* fovy_deg = nullptr);
 
   struct State;
   std::unique_ptr<State> state_;

@@ -301,7 +301,8 @@ std::vector<std::vector<size_t>> GroupApart(const RenderScene& scene,
 
 }  // namespace
 
-CameraPose Renderer::Prepare(const RenderScene& scene, const RenderOptions& options) {
+CameraPose Renderer::Prepare(const RenderScene& scene, const RenderOptions& options,
+                             double* fovy_deg_out) {
   const CameraPose pose = CalcViewPose(scene, options);  // may throw: check before drawing
   State& s = *state_;
   s.UseMeshesOf(scene);
@@ -320,6 +321,7 @@ CameraPose Renderer::Prepare(const RenderScene& scene, const RenderOptions& opti
   // Through a camera, its own field of view (the picture's size sets the aspect).
   const double fovy_deg = viewpoint ? viewpoint->fovy_deg : options.camera_fovy_deg;
   PlaceCameraAndLights(s.scene, s.context, pose, extent, fovy_deg);
+  if (fovy_deg_out) *fovy_deg_out = fovy_deg;
   AddSceneLights(scene, extent, s.scene);
   return pose;
 }
@@ -343,10 +345,12 @@ LabelledPicture Renderer::RenderLabelled(const RenderScene& scene, const RenderO
       throw std::out_of_range("RenderLabelled: no object " + std::to_string(i));
   }
   internal::EglContext::Scope current(state_->egl);
-  const CameraPose pose = Prepare(scene, options);
+  double fovy_deg = 0;
+  const CameraPose pose = Prepare(scene, options, &fovy_deg);
   State& s = *state_;
   const mjrRect viewport = {0, 0, options.width, options.height};
   LabelledPicture out;
+  out.pose = pose;
   mjr_render(viewport, &s.scene, &s.context);
   out.rgb = ReadPicture(s.context, options, pose, &out.depth);
   const int objects = int(scene.objects.size());
@@ -359,9 +363,6 @@ LabelledPicture Renderer::RenderLabelled(const RenderScene& scene, const RenderO
   const std::vector<mjvGeom> all(s.scene.geoms, s.scene.geoms + s.scene.ngeom);
   out.silhouettes.assign(silhouettes_of.size(),
                          std::vector<uint8_t>(size_t(options.width) * options.height, 0));
-  const double fovy_deg = options.view.kind == ViewKind::kCamera
-                              ? FindViewpointObject(scene, options.view.camera_name).fovy_deg
-                              : options.camera_fovy_deg;
   for (const std::vector<size_t>& group :
        GroupApart(scene, silhouettes_of, pose, fovy_deg, options.width, options.height)) {
     s.scene.ngeom = 0;
