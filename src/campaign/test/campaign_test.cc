@@ -8,6 +8,7 @@
 #include <fstream>
 #include <nlohmann/json.hpp>
 
+#include "campaign/files.h"
 #include "campaign/test/campaign_dir.h"
 #include "harness/registry.h"
 #include "output/scene_json.h"
@@ -188,6 +189,26 @@ TEST_F(CampaignTest, TheUrdfFilesOfItsArmsTravelWithTheCampaign) {
   // A changed arm is a changed scenario.
   std::ofstream(dir_ + "/spec/robots/arm.urdf", std::ios::app) << "<!-- edited -->\n";
   EXPECT_THROW(CompileCampaign(dir_, spec), CampaignError);
+}
+
+TEST_F(CampaignTest, AFileWithoutAFinalNewlineIsCopiedWhole) {
+  // The last line ends without a newline: the copy must keep its last character.
+  const fs::path scenario = fs::path(dir_ + "_no_newline.prs");
+  const std::string text = "b = Object at V3D(Range(0, 1), 0, 0.5)";
+  std::ofstream(scenario) << text;
+  lang::DiagnosticEngine diagnostics;
+  auto program = lang::CompileFile(scenario.string(), {}, diagnostics);
+  ASSERT_FALSE(diagnostics.has_errors());
+  CampaignSpec spec;
+  spec.kind = "sample";
+  spec.count = 2;
+  spec.scenario_words = {scenario.string()};
+  spec.version = "test";
+  spec = InitCampaign(dir_, *program, spec);
+  bool ok = false;
+  EXPECT_EQ(ReadFileText(dir_ + "/" + spec.main_file, &ok), text);
+  EXPECT_NO_THROW(CompileCampaign(dir_, spec));
+  fs::remove(scenario);
 }
 
 TEST_F(CampaignTest, AnArmFileOutsideTheScenarioIsRefused) {
