@@ -22,7 +22,18 @@
 namespace prs::search {
 namespace {
 
+// The sampling proposal: the kernels' spread times kSamplingWidening, and of the normals'
+// component a kWideShare drawn kWideFactor times wider still (MixtureProposal's wide layer).
 constexpr double kSamplingWidening = 2.5;
+constexpr double kWideShare = 0.5;
+constexpr double kWideFactor = 6 / kSamplingWidening;
+// Each walk kernel's own spread: kLocalBandwidth times the distance to its kNeighbours-th
+// nearest distinct walk state (in units of the Scott bandwidth), at least kMinLocalStd and at
+// most the Scott bandwidth: narrow inside each of several failure regions, as wide as before
+// where the states are sparse.
+constexpr double kLocalBandwidth = 0.5;
+constexpr size_t kNeighbours = 5;
+constexpr double kMinLocalStd = 0.005;
 constexpr double kExploreShare = 0.1;  // of the budget
 constexpr double kWalkShare = 0.1;     // of the budget
 constexpr int64_t kChains = 16;        // walks: at least, and the starts among the kernels
@@ -85,6 +96,7 @@ void PlaceKernels(const std::vector<const harness::EpisodeRecord*>& failures,
   }
   const size_t k = std::min<size_t>(kKernels, failures.size());
   proposal.centres.clear();
+  proposal.centre_std.clear();
   for (size_t i = 0; i < k; ++i) {
     const double at = (double(i) + 0.5) / double(k) * total;
     const size_t pick =
@@ -94,8 +106,44 @@ void PlaceKernels(const std::vector<const harness::EpisodeRecord*>& failures,
   NarrowByScott(k, proposal);
 }
 
+// Each centre's own spread (MixtureProposal::centre_std): the bandwidth `scott` times
+// kLocalBandwidth times the distance, in units of `scott`, to the centre's kNeighbours-th
+// nearest distinct point of `points`, between kMinLocalStd and `scott`.
+std::vector<std::vector<double>> CalcLocalSpreads(const std::vector<std::vector<double>>& centres,
+                                                  std::vector<std::vector<double>> points,
+                                                  const std::vector<double>& scott) {
+  std::sort(points.begin(), points.end());
+  points.erase(std::unique(points.begin(), points.end()), points.end());
+  std::vector<std::vector<double>> spreads;
+  for (const std::vector<double>& centre : centres) {
+    std::vector<double> squared;
+    for (const std::vector<double>& point : points) {
+      double distance = 0;
+      for (size_t j = 0; j < centre.size(); ++j) {
+        if (scott[j] > 0) distance += std::pow((centre[j] - point[j]) / scott[j], 2);
+      }
+      if (distance > 0) squared.push_back(distance);
+    }
+    const size_t k = std::min(kNeighbours, squared.size());
+    double radius = 1;
+    if (k > 0) {
+      std::nth_element(squared.begin(), squared.begin() + ptrdiff_t(k - 1), squared.end());
+      radius = std::sqrt(squared[k - 1]);
+    }
+    std::vector<double> spread = scott;
+    for (size_t j = 0; j < spread.size(); ++j) {
+      if (scott[j] > 0) {
+        spread[j] = std::min(scott[j], std::max(kLocalBandwidth * radius * scott[j], kMinLocalStd));
+      }
+    }
+    spreads.push_back(std::move(spread));
+  }
+  return spreads;
+}
+
 // Kernels around `points` (equal weights; at most kKernels of them, evenly spaced), with a
-// bandwidth of their spread times Scott's factor, on the coordinates with std > 0.
+// bandwidth of their spread times Scott's factor, on the coordinates with std > 0, each
+// narrowed where the points around it are dense (CalcLocalSpreads).
 void PlaceKernelsAt(const std::vector<std::vector<double>>& points, MixtureProposal& proposal) {
   const double n = double(points.size());
   for (int j = 0; j < proposal.dimension(); ++j) {
@@ -109,6 +157,7 @@ void PlaceKernelsAt(const std::vector<std::vector<double>>& points, MixturePropo
   proposal.centres.clear();
   for (size_t i = 0; i < k; ++i) proposal.centres.push_back(points[i * points.size() / k]);
   NarrowByScott(k, proposal);
+  proposal.centre_std = CalcLocalSpreads(proposal.centres, points, proposal.std);
 }
 
 // Per coordinate that failing depends on (std > 0 in `mask`), the failures' spread around the
@@ -186,7 +235,8 @@ const char* PhaseTag(Phase phase) {  // the "strategy" its records carry until F
 
 // The proposal a weighted generation's plan draws from.
 MixtureProposal DrawnFrom(const GenerationPlan& plan) {
-  return {plan.mean, plan.std, plan.uniform_share, plan.centres};
+  return {plan.mean,       plan.std,        plan.uniform_share, plan.centres,
+          plan.centre_std, plan.wide_share, plan.wide_factor};
 }
 
 struct Layout {
@@ -298,9 +348,15 @@ struct EstimatePlanner::State {
     return distance < relevant + 4 * std::sqrt(2.0 * relevant);
   }
 
-  // The sampling proposal from `proposal` as it stands (wider, to cover the region).
+  // The sampling proposal from `proposal` as it stands (wider, to cover the region, with a
+  // wide layer for its edges).
   void Finalise() {
     for (double& std : proposal.std) std *= kSamplingWidening;
+    for (std::vector<double>& spread : proposal.centre_std) {
+      for (double& std : spread) std *= kSamplingWidening;
+    }
+    proposal.wide_share = kWideShare;
+    proposal.wide_factor = kWideFactor;
     final = true;
   }
 };
@@ -323,10 +379,9 @@ EstimatePlanner::EstimatePlanner(const lang::CompiledProgram& program,
   s.program = &program;
   s.adaptation.reserve(size_t(options.budget));  // `failures` points into it
   s.StartSearch(s.layout.search - s.layout.second_search);
-  s.proposal = {std::vector<double>(size_t(s.dimension), 0.5),
-                std::vector<double>(size_t(s.dimension), 1 / std::sqrt(12.0)),
-                1.0,
-                {}};
+  s.proposal.mean.assign(size_t(s.dimension), 0.5);
+  s.proposal.std.assign(size_t(s.dimension), 1 / std::sqrt(12.0));
+  s.proposal.uniform_share = 1.0;
 }
 
 EstimatePlanner::~EstimatePlanner() = default;
@@ -364,7 +419,9 @@ GenerationPlan EstimatePlanner::Next() {
     // No failure to probe, explore or walk from: those episodes draw the sampling proposal
     // (the probe's, the program's own law: the second search may still find failures).
     if (s.final || (s.phase == Phase::kProbe && s.failures.empty())) s.phase = Phase::kSample;
-    const MixtureProposal uniform{s.proposal.mean, s.proposal.std, 1.0, {}};
+    MixtureProposal uniform;
+    uniform.mean = s.proposal.mean;
+    uniform.std = s.proposal.std;
     const MixtureProposal* draw = nullptr;
     if (s.phase == Phase::kProbe) {
       // Each of a few failures run again with one coordinate redrawn uniformly (spread over
@@ -399,6 +456,9 @@ GenerationPlan EstimatePlanner::Next() {
       plan.std = draw->std;
       plan.centres = draw->centres;
       plan.uniform_share = draw->uniform_share;
+      plan.centre_std = draw->centre_std;
+      plan.wide_share = draw->wide_share;
+      plan.wide_factor = draw->wide_factor;
     }
     plan.strategy = PhaseTag(s.phase);
   }

@@ -25,18 +25,28 @@ double CalcTruncatedNormalDensity(double x, double mean, double std) {
 
 double MixtureProposal::CalcDensity(const double* u) const {
   if (uniform_share >= 1) return 1;
-  auto normals = [&](const std::vector<double>& centre) {
+  // The normals around `centre` with spread `spread` times `factor`, on the coordinates
+  // with std > 0.
+  auto normals = [&](const std::vector<double>& centre, const std::vector<double>& spread,
+                     double factor) {
     double density = 1;
     for (int j = 0; j < dimension(); ++j) {
-      if (std[j] > 0) density *= CalcTruncatedNormalDensity(u[j], centre[j], std[j]);
+      if (std[j] > 0) density *= CalcTruncatedNormalDensity(u[j], centre[j], factor * spread[j]);
     }
     return density;
   };
+  auto layers = [&](const std::vector<double>& centre, const std::vector<double>& spread) {
+    if (wide_share <= 0) return normals(centre, spread, 1);
+    return (1 - wide_share) * normals(centre, spread, 1) +
+           wide_share * normals(centre, spread, wide_factor);
+  };
   double gaussian = 0;
   if (centres.empty()) {
-    gaussian = normals(mean);
+    gaussian = layers(mean, std);
   } else {
-    for (const std::vector<double>& centre : centres) gaussian += normals(centre);
+    for (size_t i = 0; i < centres.size(); ++i) {
+      gaussian += layers(centres[i], centre_std.empty() ? std : centre_std[i]);
+    }
     gaussian /= double(centres.size());
   }
   return uniform_share + (1 - uniform_share) * gaussian;
@@ -55,17 +65,25 @@ bool MixturePoints::Point(uint64_t seed, uint64_t index, int64_t attempt, double
     for (int j = 0; j < d; ++j) u[j] = rng.Uniform01();
     return true;
   }
+  const size_t pick = proposal_.centres.empty()
+                          ? 0
+                          : size_t(rng.UniformInt(0, int64_t(proposal_.centres.size()) - 1));
   const std::vector<double>& centre =
-      proposal_.centres.empty()
-          ? proposal_.mean
-          : proposal_.centres[size_t(rng.UniformInt(0, int64_t(proposal_.centres.size()) - 1))];
+      proposal_.centres.empty() ? proposal_.mean : proposal_.centres[pick];
+  const std::vector<double>& spread =
+      proposal_.centre_std.empty() ? proposal_.std : proposal_.centre_std[pick];
+  // The wide layer's draw only when there is one, so that the points of a mixture without it
+  // are those of earlier versions.
+  const double factor = proposal_.wide_share > 0 && rng.Uniform01() < proposal_.wide_share
+                            ? proposal_.wide_factor
+                            : 1.0;
   for (int j = 0; j < d; ++j) {
     const double v = rng.Uniform01();
     if (proposal_.std[j] <= 0) {
       u[j] = v;
       continue;
     }
-    const double x = geometry::MapTruncatedNormal(v, centre[j], proposal_.std[j], 0, 1);
+    const double x = geometry::MapTruncatedNormal(v, centre[j], factor * spread[j], 0, 1);
     u[j] = std::isnan(x) ? rng.Uniform01() : std::min(x, 1.0 - 0x1.0p-53);
   }
   return true;

@@ -12,8 +12,9 @@ namespace prs::search {
 
 /// A defensive mixture over the unit cube: with probability `uniform_share` a uniform point,
 /// else independent normals per coordinate truncated to [0, 1) (around `mean`, or around one of
-/// `centres` picked at random). Its density is at least
-/// `uniform_share` everywhere, so importance weights stay below 1 / uniform_share.
+/// `centres` picked at random; of those, a `wide_share` drawn `wide_factor` times wider). Its
+/// density is at least `uniform_share` everywhere, so importance weights stay below
+/// 1 / uniform_share.
 struct MixtureProposal {
   /// Per coordinate; a `std` of 0 makes that coordinate uniform in the normals' component too
   /// (one that failing does not depend on).
@@ -23,6 +24,13 @@ struct MixtureProposal {
   /// these points (each of dimension() coordinates; `mean` unused), which follows a failure
   /// region of any shape.
   std::vector<std::vector<double>> centres;
+  /// When not empty, each centre's own spread per coordinate (one vector per centre, used
+  /// where `std` > 0): narrow where the centres are dense, wider where they are sparse.
+  std::vector<std::vector<double>> centre_std;
+  /// The share of the normals' component drawn around the same centre `wide_factor` times
+  /// wider: a second layer that reaches the edges of a failure region the narrow normals
+  /// cover thinly, with weights far below 1 / uniform_share there (0: none).
+  double wide_share = 0, wide_factor = 1;
 
   /// The density at `u` (dimension() coordinates in [0, 1)).
   double CalcDensity(const double* u) const;

@@ -58,8 +58,18 @@ class ProposalPoints : public sampling::AttemptPoints {
       for (const auto& centre : plan.centres) {
         if (int(centre.size()) != dimension_) throw std::invalid_argument("a centre's size");
       }
+      if (!plan.centre_std.empty() && plan.centre_std.size() != plan.centres.size()) {
+        throw std::invalid_argument("a mixture's plan has a spread per centre for some only");
+      }
+      for (const auto& spread : plan.centre_std) {
+        if (int(spread.size()) != dimension_) throw std::invalid_argument("a spread's size");
+      }
+      if (!(plan.wide_share >= 0 && plan.wide_share < 1 && plan.wide_factor > 0)) {
+        throw std::invalid_argument("a mixture's wide layer is out of range");
+      }
       mixture_ = std::make_unique<MixturePoints>(
-          MixtureProposal{plan.mean, plan.std, plan.uniform_share, plan.centres});
+          MixtureProposal{plan.mean, plan.std, plan.uniform_share, plan.centres, plan.centre_std,
+                          plan.wide_share, plan.wide_factor});
     }
     if ((mode_ == Mode::kChain || mode_ == Mode::kGiven) &&
         static_cast<int64_t>(centres.size()) < plan.count) {
@@ -448,6 +458,11 @@ nlohmann::json PlanToJson(const GenerationPlan& plan) {
   if (!plan.centres.empty()) json["centres"] = plan.centres;
   if (plan.mode == "chain") json["step"] = plan.step;
   if (plan.mode == "mixture") json["uniform_share"] = plan.uniform_share;
+  if (!plan.centre_std.empty()) json["centre_std"] = plan.centre_std;
+  if (plan.wide_share > 0) {
+    json["wide_share"] = plan.wide_share;
+    json["wide_factor"] = plan.wide_factor;
+  }
   return json;
 }
 
@@ -465,6 +480,9 @@ GenerationPlan PlanFromJson(const nlohmann::json& json) {
     plan.centres = json.value("centres", std::vector<std::vector<double>>{});
     plan.step = json.value("step", 0.0);
     plan.uniform_share = json.value("uniform_share", 1.0);
+    plan.centre_std = json.value("centre_std", std::vector<std::vector<double>>{});
+    plan.wide_share = json.value("wide_share", 0.0);
+    plan.wide_factor = json.value("wide_factor", 1.0);
     ProposalPoints check(plan);  // throws for an unknown mode or missing centres
     if (plan.count < 0 || plan.dimension < 1 ||
         (plan.mode == "gaussian" && (static_cast<int>(plan.mean.size()) != plan.dimension ||

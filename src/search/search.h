@@ -99,6 +99,9 @@ struct GenerationPlan {
   std::vector<std::vector<double>> centres;
   double step = 0;
   double uniform_share = 1;
+  // "mixture" too: MixtureProposal's per-centre spreads and wide layer.
+  std::vector<std::vector<double>> centre_std;
+  double wide_share = 0, wide_factor = 1;
   std::string strategy;  // the name records carry ("ce", "anneal", "random", "bo", ...)
 };
 nlohmann::json PlanToJson(const GenerationPlan& plan);

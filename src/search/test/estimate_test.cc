@@ -21,7 +21,10 @@ using sampling::testing_checks::CompileOrDie;
 TEST(MixtureProposalTest, ItsPointsFollowItsDensity) {
   // E_q[1 / q] = 1 exactly when q is the density the points are drawn from; and a coordinate's
   // share in [0, 0.1) matches the density's integral there.
-  const MixtureProposal proposal{{0.1, 0.7}, {0.05, 0.2}, 0.2, {}};
+  MixtureProposal proposal;
+  proposal.mean = {0.1, 0.7};
+  proposal.std = {0.05, 0.2};
+  proposal.uniform_share = 0.2;
   const MixturePoints points(proposal);
   const int n = 200'000;
   double sum_inverse = 0;
@@ -38,6 +41,41 @@ TEST(MixtureProposalTest, ItsPointsFollowItsDensity) {
   const double phi_m2 = 0.5 * std::erfc(2 / std::sqrt(2.0));
   const double expected = 0.02 + 0.8 * (0.5 - phi_m2) / (1 - phi_m2);
   EXPECT_NEAR(double(low) / n, expected, 4 * std::sqrt(expected / n));
+}
+
+TEST(MixtureProposalTest, PerCentreSpreadsAndTheWideLayerFollowItsDensity) {
+  // Two centres with their own spreads, a wide layer of 30 % three times wider, and a second
+  // coordinate that stays uniform (std 0).
+  MixtureProposal proposal{.mean = {0.5, 0.5},
+                           .std = {1, 0},
+                           .uniform_share = 0.2,
+                           .centres = {{0.2, 0.5}, {0.8, 0.5}},
+                           .centre_std = {{0.05, 0}, {0.02, 0}},
+                           .wide_share = 0.3,
+                           .wide_factor = 3};
+  const MixturePoints points(proposal);
+  const int n = 200'000;
+  double sum_inverse = 0;
+  int low = 0, second_low = 0;
+  for (int i = 0; i < n; ++i) {
+    double u[2];
+    ASSERT_TRUE(points.Point(5, uint64_t(i), 0, u));
+    sum_inverse += 1 / proposal.CalcDensity(u);
+    low += u[0] < 0.3;
+    second_low += u[1] < 0.3;
+  }
+  EXPECT_NEAR(sum_inverse / n, 1.0, 0.01);
+  // P(u0 < 0.3), from the normal CDF truncated to [0, 1] per layer and centre.
+  const auto phi = [](double z) { return 0.5 * std::erfc(-z / std::sqrt(2.0)); };
+  const auto cdf = [&](double x, double mean, double std) {
+    return (phi((x - mean) / std) - phi(-mean / std)) / (phi((1 - mean) / std) - phi(-mean / std));
+  };
+  const auto layers = [&](double mean, double std) {
+    return 0.7 * cdf(0.3, mean, std) + 0.3 * cdf(0.3, mean, 3 * std);
+  };
+  const double expected = 0.2 * 0.3 + 0.8 * 0.5 * (layers(0.2, 0.05) + layers(0.8, 0.02));
+  EXPECT_NEAR(double(low) / n, expected, 4 * std::sqrt(expected / n));
+  EXPECT_NEAR(double(second_low) / n, 0.3, 4 * std::sqrt(0.3 / n));
 }
 
 TEST(CalcEstimateTest, WeightedSharesIntervalsAndTheBoundWithoutFailures) {
@@ -180,10 +218,11 @@ TEST(RunEstimateTest, TheTableCubePlantedFailuresAreCovered) {
     const harness::ControllerFactory factory = [failure] {
       return harness::MakePlantedController(failure);
     };
-    const Coverage c = MeasureCoverage(*program, factory, truth, "planted-failure", 2000, 20);
-    // An interval covers, or the run says it cannot give one; on these shapes it rarely has to.
-    EXPECT_GE(c.covered + c.flagged, 17) << "95 % intervals over 20 seeds";
-    EXPECT_LE(c.flagged, 3);
+    const Coverage c = MeasureCoverage(*program, factory, truth, "planted-failure", 2000, 100);
+    // An interval covers, or the run says it cannot give one (issue 43 asks for 93 % at
+    // least); on these shapes it rarely has to.
+    EXPECT_GE(c.covered + c.flagged, 90) << "95 % intervals over 100 seeds";
+    EXPECT_LE(c.flagged, 10);
     EXPECT_LE(Median(c.errors), 0.25);
     EXPECT_LT(Median(c.errors), Median(c.iid_errors)) << "i.i.d. with the same budget";
   }
