@@ -19,18 +19,28 @@
 namespace prs::search {
 namespace {
 
+// The records by score, lowest (nearest to failing) first; empty when a record has no score.
+std::vector<const WeightedOutcome*> SortByScore(const std::vector<WeightedOutcome>& records) {
+  std::vector<const WeightedOutcome*> by_score;
+  for (const WeightedOutcome& r : records) {
+    if (std::isnan(r.score)) return {};
+    by_score.push_back(&r);
+  }
+  std::stable_sort(by_score.begin(), by_score.end(),
+                   [](const auto* a, const auto* b) { return a->score < b->score; });
+  return by_score;
+}
+
 // Estimate::uncovered_share: the draws with the lowest scores, as many as make
 // kNearFailureMass of the weight (of the program's law), and the weighted share of them drawn
 // where the normals give under half the proposal's density. NaN when a record has no score or
 // no kernel share.
 double CalcUncoveredShare(const std::vector<WeightedOutcome>& records, double total_weight) {
-  std::vector<const WeightedOutcome*> by_score;
   for (const WeightedOutcome& r : records) {
-    if (std::isnan(r.score) || std::isnan(r.kernel_share)) return NAN;
-    by_score.push_back(&r);
+    if (std::isnan(r.kernel_share)) return NAN;
   }
-  std::stable_sort(by_score.begin(), by_score.end(),
-                   [](const auto* a, const auto* b) { return a->score < b->score; });
+  const std::vector<const WeightedOutcome*> by_score = SortByScore(records);
+  if (by_score.empty()) return NAN;
   double near = 0, uncovered = 0;
   for (const WeightedOutcome* r : by_score) {
     if (near >= kNearFailureMass * total_weight && r->score > 0) break;
@@ -38,6 +48,28 @@ double CalcUncoveredShare(const std::vector<WeightedOutcome>& records, double to
     if (r->kernel_share < 0.5) uncovered += r->weight;
   }
   return near > 0 ? uncovered / near : NAN;
+}
+
+// How much larger a failure's variance may be than its failing draws say: the variance rests
+// on the mean weight over the failure set, which the failing draws estimate where the proposal
+// put them and so under-weigh the set's edges, where the proposal is thin and weights are
+// large. The draws nearest to failing (the lowest scores, kEdgeMass times the failures'
+// weight, the failures among them) reach those edges more often: the ratio of their mean
+// weight (sum w^2 / sum w) to the failures', when above 1. 1 without scores.
+double CalcEdgeFactor(const std::vector<WeightedOutcome>& records, const std::string& outcome) {
+  double failing = 0, failing_squares = 0;
+  for (const WeightedOutcome& r : records) {
+    if (r.outcome == outcome) failing += r.weight, failing_squares += r.weight * r.weight;
+  }
+  const std::vector<const WeightedOutcome*> by_score = SortByScore(records);
+  if (by_score.empty() || !(failing > 0)) return 1;
+  double near = 0, near_squares = 0;
+  for (const WeightedOutcome* r : by_score) {
+    if (near >= kEdgeMass * failing) break;
+    near += r->weight;
+    near_squares += r->weight * r->weight;
+  }
+  return std::max(1.0, (near_squares / near) / (failing_squares / failing));
 }
 
 }  // namespace
@@ -104,6 +136,7 @@ Estimate CalcEstimate(const std::vector<WeightedOutcome>& records,
                              : (r.weight * f - p) * (r.weight * f - p);
     }
     variance /= normalised ? total * total : n * (n - 1);
+    variance *= CalcEdgeFactor(records, outcome);
     // The exact binomial interval at the effective counts (intervals.h): right for few
     // failures and for p near 1, where the delta method's p +- 1.96 sd is not.
     const RateInterval ci = CalcEffectiveCountInterval(std::min(p, 1.0), variance, estimate.ess);

@@ -58,6 +58,10 @@ struct Estimate {
 
 /// The fewest effective episodes an estimate is reported for.
 inline constexpr double kMinEss = 30;
+/// A failure's variance is the larger of what its failing draws say and what the draws nearest
+/// to failing say: the lowest scores, this many times the failures' weight (docs/search.md,
+/// "Intervals").
+inline constexpr double kEdgeMass = 3;
 /// The near-failures the coverage check looks at: the lowest scores, this much of the law.
 inline constexpr double kNearFailureMass = 0.01;
 /// The most of the near-failures the proposal's normals may leave to the uniform share.

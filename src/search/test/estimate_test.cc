@@ -78,6 +78,32 @@ TEST(MixtureProposalTest, PerCentreSpreadsAndTheWideLayerFollowItsDensity) {
   EXPECT_NEAR(double(second_low) / n, 0.3, 4 * std::sqrt(0.3 / n));
 }
 
+TEST(CalcEstimateTest, TheVarianceIsAtLeastWhatTheDrawsNearestToFailingSay) {
+  // 10 failures of weight 0.1 in 1,000 plain-mean draws (p = 1 / 1000 whatever the successes
+  // weigh). With successes of weight 1, the draws nearest to failing, 3 times the failures'
+  // weight, are the 10 failures and the two successes of score 0.1: their mean weight,
+  // sum w^2 / sum w = 2.1 / 3, is 7 times the failures' 0.01 / 0.1.
+  const auto draws = [](double success_weight, double near_score, double far_score) {
+    std::vector<WeightedOutcome> records(10, {"fell", 0.1, 0.2, false, -1, NAN});
+    records.insert(records.end(), 2, {"success", success_weight, 0.2, false, near_score, NAN});
+    records.insert(records.end(), 988, {"success", success_weight, 0.2, false, far_score, NAN});
+    return records;
+  };
+  const double p = 1.0 / 1000;
+  const double plain =
+      (10 * std::pow(0.1 - p, 2) + 990 * p * p) / (1000.0 * 999);  // the sample variance
+  const Estimate edged = CalcEstimate(draws(1, 0.1, 5));
+  ASSERT_EQ(edged.outcomes.size(), 1u);
+  EXPECT_DOUBLE_EQ(edged.outcomes[0].p, p);
+  EXPECT_NEAR(edged.outcomes[0].iid_episodes, p * (1 - p) / (7 * plain), 1e-6);
+  // Without scores there is nothing to compare with; with successes of weight 0.05 the near
+  // draws (the failures and 40 successes) weigh 0.2 / 3 on average, less than the failures'
+  // 0.1, and the failures' own variance stands: the factor is never below 1.
+  EXPECT_NEAR(CalcEstimate(draws(1, NAN, NAN)).outcomes[0].iid_episodes, p * (1 - p) / plain, 1e-6);
+  EXPECT_NEAR(CalcEstimate(draws(0.05, 0.1, 5)).outcomes[0].iid_episodes, p * (1 - p) / plain,
+              1e-6);
+}
+
 TEST(CalcEstimateTest, WeightedSharesIntervalsAndTheBoundWithoutFailures) {
   std::vector<WeightedOutcome> records;
   for (int copy = 0; copy < 10; ++copy) {
