@@ -233,11 +233,12 @@ TEST(RunEstimateTest, TheTableCubePlantedFailuresAreCovered) {
   const auto program = sampling::testing_checks::CompileExample("table_cube.prs");
   ASSERT_TRUE(program);
   // The truths, by i.i.d. sampling (docs/benchmarks.md: `prs test examples/table_cube.prs
-  // --controller planted-1-... -n 2000000 -s 11`): 2,131 and 20,338 failures in 2,000,000.
+  // --controller planted-1-... -n 2000000 -s 11`): 2,131 and 20,338 failures in 2,000,000; for
+  // the 0.1 % disk also 10,199 in 10,000,000 with -s 21 (standard error 0.9 %).
   const struct {
     harness::PlantedFailure failure;
     double truth;
-  } cases[] = {{harness::PlantedOnePermille(), 2131.0 / 2e6},
+  } cases[] = {{harness::PlantedOnePermille(), (2131.0 + 10199) / 12e6},
                {harness::PlantedOnePercent(), 20338.0 / 2e6}};
   for (const auto& [failure, truth] : cases) {
     SCOPED_TRACE(truth);
