@@ -44,6 +44,7 @@ packages=(
   python3-pytest python3-matplotlib  # Python tests and the plotting example
   python3-sklearn        # probrobscene.search(strategy="bo"): Gaussian processes
   python3-distributed    # probrobscene.campaign.run on a Dask cluster, tested on a LocalCluster
+  python3-torch python3-pil  # examples/learning: the learned perception (PyTorch on the CPU)
   munge slurmctld slurmd slurm-client  # a real single-node Slurm for tests/slurm/campaign_test.sh
   procps                 # pgrep/pkill in that test (kills a task's prs as a dead node would)
   libsdformat-dev        # prs export tests: SDF read by its own parser (URDF by urdfdom, above)

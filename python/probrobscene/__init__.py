@@ -8,8 +8,9 @@
 Scene ``i`` of seed ``s`` is the scene ``prs sample -s s --start i`` prints, on any machine and
 any number of threads. Units are metres and radians. See docs/python.md.
 
-``serve`` (your controller as a ``prs test --exec`` worker) is pure Python: from the sources
-alone, without the compiled module ``_core``, the package imports with ``serve`` and the errors.
+``serve`` (your controller as a ``prs test --exec`` worker) and ``serve_perception`` (a learned
+perception as a ``prs test --perception`` worker) are pure Python: from the sources alone,
+without the compiled module ``_core``, the package imports with them and the errors.
 """
 
 from __future__ import annotations  # the hints name compiled classes, absent without _core
@@ -20,6 +21,7 @@ import os
 from typing import Any, Dict, Iterable, Iterator, List, Mapping, Optional, Sequence, Union
 
 from ._errors import SamplingError, ScenarioError
+from .perception import load_sighting, serve_perception
 from .serve import serve
 
 try:  # `from ._core import` first: unlike `from . import _core`, it raises ModuleNotFoundError
@@ -36,7 +38,7 @@ __version__ = "0.1.0"
 __all__ = [
     "load", "loads", "Scenario", "Scene", "SceneObject", "ScenarioError", "SamplingError",
     "positions", "dimensions", "quaternions", "yaw_pitch_roll", "search", "report", "campaign",
-    "read_scenes", "test", "estimate", "dataset", "serve",
+    "read_scenes", "test", "estimate", "dataset", "serve", "serve_perception", "load_sighting",
 ]
 
 PathLike = Union[str, "os.PathLike[str]"]
@@ -321,8 +323,9 @@ def dataset(scenes: Union[PathLike, Iterable[Scene]], out: PathLike, *,
 if _BUILT:
     from . import campaign  # noqa: E402  (probrobscene.campaign.run: shards on a Dask cluster)
 else:
-    _NEEDS_CORE = set(__all__) - {"serve", "ScenarioError", "SamplingError"} | {"_core"}
-    __all__[:] = ["serve", "ScenarioError", "SamplingError"]  # in place: linters read the above
+    _PURE = ["serve", "serve_perception", "load_sighting", "ScenarioError", "SamplingError"]
+    _NEEDS_CORE = set(__all__) - set(_PURE) | {"_core"}
+    __all__[:] = _PURE  # in place: linters read the above
     del load, loads, search, report, read_scenes, test, estimate, dataset
 
     def __getattr__(name: str) -> Any:
@@ -330,6 +333,6 @@ else:
         if name in _NEEDS_CORE:
             raise ImportError(f"probrobscene.{name}: the compiled module probrobscene._core is "
                               f"not built beside {os.path.dirname(__file__)} (build or install "
-                              f"the package: docs/python.md); only probrobscene.serve works "
-                              f"without it")
+                              f"the package: docs/python.md); only probrobscene.serve and "
+                              f"serve_perception work without it")
         raise AttributeError(f"module {__name__!r} has no attribute {name!r}")

@@ -128,6 +128,12 @@ def test(scenes: Union[PathLike, Iterable[Scene]],
 def serve(controller: Callable[[Dict[str, Any]], Union[str, Mapping[str, Any]]], *,
           ready_extra: Optional[Mapping[str, Any]] = ...) -> None: ...
 
+# A learned perception as a `prs test --perception` worker (perception.py; pure Python but for
+# load_sighting, which needs numpy and Pillow).
+def serve_perception(perceive: Callable[[Dict[str, Any]], Any], *,
+                     ready_extra: Optional[Mapping[str, Any]] = ...) -> None: ...
+def load_sighting(request: Mapping[str, Any]) -> Dict[str, Any]: ...
+
 def positions(scenes: Iterable[Scene], name: str) -> FloatArray: ...  # (n, 3)
 def dimensions(scenes: Iterable[Scene], name: str) -> FloatArray: ...  # (n, 3)
 def quaternions(scenes: Iterable[Scene], name: str) -> FloatArray: ...  # (n, 4)

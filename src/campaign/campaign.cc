@@ -47,6 +47,7 @@ nlohmann::json ToJson(const CampaignSpec& s) {
           {"timeout_s", s.timeout_s},
           {"persistent", s.persistent},
           {"startup_timeout_s", s.startup_timeout_s},
+          {"perception", s.perception},
           {"spec_hash", s.spec_hash},
           {"version", s.version},
           {"strategy", s.strategy},
@@ -273,6 +274,7 @@ CampaignSpec ReadCampaign(const std::string& dir) {
     s.timeout_s = j.at("timeout_s");
     s.persistent = j.value("persistent", false);
     s.startup_timeout_s = j.value("startup_timeout_s", 120.0);
+    s.perception = j.value("perception", "");
     s.spec_hash = j.at("spec_hash");
     s.version = j.at("version");
     s.strategy = j.value("strategy", "");

@@ -42,6 +42,7 @@ struct CampaignSpec {
   double timeout_s = 60;
   bool persistent = false;         // test, search: --exec started once per worker thread
   double startup_timeout_s = 120;  // its --startup-timeout
+  std::string perception;          // test, search, estimate: table-cube's --perception CMD
   std::string spec_hash;           // search::CalcSpecHash of the copied program
   std::string version;             // the prs that made it
   // kind "search": the strategy ("ce", "anneal", "random") and the generation size; count is

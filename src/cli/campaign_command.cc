@@ -141,6 +141,7 @@ int RunInit(const CampaignArgs& args) {
   spec.timeout_s = args.controller.timeout_s;
   spec.persistent = args.controller.persistent;
   spec.startup_timeout_s = args.controller.startup_timeout_s;
+  spec.perception = args.controller.perception;
   spec.version = PRS_VERSION;
   try {
     // Every shard looks through the same cameras: scene 0 of the seed's, named now.
@@ -190,9 +191,9 @@ int RunShardCommand(const CampaignArgs& args) {
     program = campaign::CompileCampaign(args.dir, spec);
     std::optional<harness::ControllerFactory> factory;
     if (spec.kind != "sample" && spec.kind != "dataset") {
-      factory = ChooseController(
-          {spec.controller, spec.exec, spec.timeout_s, spec.persistent, spec.startup_timeout_s},
-          interrupt.flag());
+      factory = ChooseController({spec.controller, spec.exec, spec.timeout_s, spec.persistent,
+                                  spec.startup_timeout_s, spec.perception},
+                                 interrupt.flag());
       if (!factory) return kExitUsage;
     }
     campaign::RunShard(args.dir, spec, *program, static_cast<uint64_t>(args.shard),

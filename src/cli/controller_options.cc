@@ -23,7 +23,15 @@ void AddControllerOptions(CLI::App& command, ControllerArgs& args) {
                       "your own controller: a shell command run once per scene (docs/harness.md)")
           ->type_name("CMD")
           ->excludes(controller);
-  command.add_option("--timeout", args.timeout_s, "seconds an --exec episode may take")
+  command
+      .add_option("--perception", args.perception,
+                  "table-cube's learned perception: a worker command shown each sighting's "
+                  "picture, answering where the cube is (docs/harness.md, \"Perception workers\")")
+      ->type_name("CMD")
+      ->excludes(exec);
+  command
+      .add_option("--timeout", args.timeout_s,
+                  "seconds an --exec episode (or a --perception answer) may take")
       ->type_name("S")
       ->check(PositiveNumber("seconds"))
       ->capture_default_str();
@@ -34,7 +42,8 @@ void AddControllerOptions(CLI::App& command, ControllerArgs& args) {
       ->needs(exec);
   command
       .add_option("--startup-timeout", args.startup_timeout_s,
-                  "seconds a --persistent worker may take to send its handshake")
+                  "seconds a --persistent or --perception worker may take to send its "
+                  "handshake")
       ->type_name("S")
       ->check(PositiveNumber("seconds"))
       ->capture_default_str();
@@ -49,8 +58,17 @@ std::optional<harness::ControllerFactory> ChooseController(const ControllerArgs&
                ") or --exec CMD");
     return std::nullopt;
   }
-  const controllers::ControllerChoice choice{args.controller, args.exec, args.timeout_s,
-                                             args.persistent, args.startup_timeout_s};
+  const controllers::ControllerChoice choice{args.controller,        args.exec,
+                                             args.timeout_s,         args.persistent,
+                                             args.startup_timeout_s, args.perception};
+  if (!args.perception.empty() && !controllers::TakesPerception(args.controller)) {
+    PrintError(
+        "--perception: only --controller table-cube and table-cube-clear-view take a "
+        "perception worker" +
+        (args.controller.empty() ? std::string(", and no --controller was given")
+                                 : ", not '" + args.controller + "'"));
+    return std::nullopt;
+  }
   if (auto factory = controllers::MakeControllerFactory(choice, &cancel)) return factory;
   std::vector<std::string> names;
   for (const harness::ControllerInfo& info : harness::ListControllers()) names.push_back(info.name);

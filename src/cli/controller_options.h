@@ -15,17 +15,19 @@
 
 namespace prs::cli {
 
-/// --controller NAME / --exec CMD / --timeout S / --persistent / --startup-timeout S.
+/// --controller NAME / --exec CMD / --timeout S / --persistent / --startup-timeout S /
+/// --perception CMD.
 struct ControllerArgs {
   std::string controller;
   std::string exec;
   double timeout_s = 60;
   bool persistent = false;
   double startup_timeout_s = 120;
+  std::string perception;  // --perception CMD: table-cube's learned perception
 };
 
-/// Adds --controller, --exec (excluding each other), --timeout, --persistent and
-/// --startup-timeout (both needing --exec) to `command`.
+/// Adds --controller, --exec (excluding each other), --timeout, --persistent (needing --exec),
+/// --startup-timeout and --perception (excluding --exec) to `command`.
 void AddControllerOptions(CLI::App& command, ControllerArgs& args);
 
 /// The built-in controllers' names, comma-separated.

@@ -3,8 +3,11 @@
 #include "controllers/builtin.h"
 
 #include <algorithm>
+#include <memory>
 #include <mutex>
+#include <stdexcept>
 
+#include "controllers/perception_worker.h"
 #include "export/export.h"
 #include "harness/exec_controller.h"
 #include "harness/persistent_controller.h"
@@ -16,11 +19,17 @@ namespace {
 
 // The paper's case-study controller (MuJoCo, camera perception, inverse kinematics); one per
 // worker thread, each with its own simulation and rendering context.
+// With a perception pool (--perception), each one holds a perception worker too.
 class TableCubeEpisodes : public harness::Controller {
  public:
-  explicit TableCubeEpisodes(sim::TableCubeOptions options = {}) : controller_(options) {}
+  explicit TableCubeEpisodes(sim::TableCubeOptions options = {},
+                             std::shared_ptr<harness::LineWorkerPool> perception = nullptr)
+      : perception_(perception ? std::make_unique<PerceptionClient>(std::move(perception))
+                               : nullptr),
+        controller_(WithPerception(std::move(options), perception_.get())) {}
   harness::EpisodeResult RunEpisode(const sampling::SampledScene& scene,
                                     const std::string& /*scene_json*/) override {
+    if (perception_) perception_->SetScene(scene.seed, scene.index);
     sim::TaskOutcome outcome = controller_.Run(scene.scene);
     nlohmann::json extra = nlohmann::json::object();
     for (const auto& [name, value] : outcome.metrics) extra[name] = value;
@@ -31,6 +40,17 @@ class TableCubeEpisodes : public harness::Controller {
   }
 
  private:
+  static sim::TableCubeOptions WithPerception(sim::TableCubeOptions options,
+                                              PerceptionClient* client) {
+    if (client) {
+      options.perception = [client](const sim::CubeSightingRequest& request) {
+        return client->Ask(request);
+      };
+    }
+    return options;
+  }
+
+  std::unique_ptr<PerceptionClient> perception_;  // before controller_, whose options use it
   sim::TableCubeController controller_;
 };
 
@@ -96,8 +116,26 @@ std::string ListControllerNames() {
   return names;
 }
 
+bool TakesPerception(const std::string& name) {
+  return name == "table-cube" || name == "table-cube-clear-view";
+}
+
 std::optional<harness::ControllerFactory> MakeControllerFactory(const ControllerChoice& choice,
                                                                 const std::atomic<bool>* cancel) {
+  if (!choice.perception.empty()) {
+    if (!TakesPerception(choice.name)) {
+      throw std::invalid_argument(
+          "--perception: only the controllers table-cube and table-cube-clear-view take a "
+          "perception worker" +
+          (choice.name.empty() ? std::string(" (give --controller table-cube)")
+                               : ", not '" + choice.name + "'"));
+    }
+    sim::TableCubeOptions options;
+    options.clear_view_before_sighting = choice.name == "table-cube-clear-view";
+    const auto pool =
+        MakePerceptionPool({choice.perception, choice.timeout_s, choice.startup_timeout_s, cancel});
+    return [options, pool] { return std::make_unique<TableCubeEpisodes>(options, pool); };
+  }
   if (!choice.exec.empty() && choice.persistent) {
     harness::ControllerFactory workers = harness::MakePersistentControllerFactory(
         {choice.exec, choice.timeout_s, choice.startup_timeout_s, cancel});

@@ -29,13 +29,20 @@ struct ControllerChoice {
   double timeout_s = 60;           // --timeout: seconds an --exec episode may take
   bool persistent = false;         // --persistent: one --exec process per worker thread
   double startup_timeout_s = 120;  // --startup-timeout: seconds a persistent worker may start in
+  /// --perception: a perception worker's command for table-cube (or table-cube-clear-view),
+  /// with the timeouts above per sighting and to start (perception_worker.h).
+  std::string perception = {};
 };
+
+/// Whether the built-in controller `name` takes a --perception worker.
+bool TakesPerception(const std::string& name);
 
 /// The factory of the shell command `choice.exec` when it is not empty (harness::ExecController,
 /// or with `persistent` harness::MakePersistentControllerFactory's, with the timeouts and
 /// `cancel`, warning with kNoFreeBodyWarning on scenes without a free body), else of the
-/// registered controller `choice.name`; nullopt when no controller has that name. Registers
-/// the built-in controllers first.
+/// registered controller `choice.name`; nullopt when no controller has that name. With
+/// `choice.perception`, table-cube's with a pool of perception workers; std::invalid_argument
+/// when the controller takes none (TakesPerception). Registers the built-in controllers first.
 std::optional<harness::ControllerFactory> MakeControllerFactory(const ControllerChoice& choice,
                                                                 const std::atomic<bool>* cancel);
 

@@ -9,6 +9,7 @@
 #include <array>
 #include <cstdint>
 #include <memory>
+#include <nlohmann/json.hpp>
 #include <string>
 #include <vector>
 
@@ -58,6 +59,11 @@ struct PinholeCamera {
   Eigen::Matrix3d R_CW = Eigen::Matrix3d::Identity();
   Eigen::Vector3d p_CW = Eigen::Vector3d::Zero();  // metres: the world origin in camera frame
 };
+
+/// A view's entry of BOP's scene_camera.json as this stage writes it: cam_K (pixels, row-major),
+/// cam_R_w2c, cam_t_w2c (mm), depth_scale (mm per depth unit), width and height (pixels). The
+/// case study's perception requests carry the same fields (src/controllers).
+nlohmann::ordered_json FormatSceneCamera(const PinholeCamera& camera, double depth_scale);
 
 /// The pinhole model of a picture MuJoCo draws from `pose` with vertical field of view
 /// `fovy_deg` at width x height (square pixels: the aspect comes from the picture's size).

@@ -67,6 +67,19 @@ Json FormatMatrix(const Eigen::Matrix3d& R) {
 
 Json FormatVector(const Eigen::Vector3d& v) { return Json::array({v.x(), v.y(), v.z()}); }
 
+}  // namespace
+
+Json FormatSceneCamera(const PinholeCamera& c, double depth_scale) {
+  return {{"cam_K", {c.fx, 0.0, c.cx, 0.0, c.fy, c.cy, 0.0, 0.0, 1.0}},
+          {"cam_R_w2c", FormatMatrix(c.R_CW)},
+          {"cam_t_w2c", FormatVector(1000.0 * c.p_CW)},
+          {"depth_scale", depth_scale},
+          {"width", c.width},
+          {"height", c.height}};
+}
+
+namespace {
+
 Json FormatBox(const PixelBox& b) { return Json::array({b[0], b[1], b[2], b[3]}); }
 
 std::string ImageName(uint64_t im_id) { return fmt::format("{:06d}", im_id); }
@@ -169,13 +182,8 @@ struct DatasetWriter::State {
     Chunk& chunk = chunks[number];
     const std::string key = std::to_string(im_id);
     const PinholeCamera& c = image.pinhole;
-    chunk.scene_camera[key] = {{"cam_K", {c.fx, 0.0, c.cx, 0.0, c.fy, c.cy, 0.0, 0.0, 1.0}},
-                               {"cam_R_w2c", FormatMatrix(c.R_CW)},
-                               {"cam_t_w2c", FormatVector(1000.0 * c.p_CW)},
-                               {"depth_scale", image.depth_scale},
-                               {"width", c.width},
-                               {"height", c.height},
-                               {"camera", image.camera}};
+    chunk.scene_camera[key] = FormatSceneCamera(c, image.depth_scale);
+    chunk.scene_camera[key]["camera"] = image.camera;
     Json gt = Json::array(), info = Json::array();
     for (size_t k = 0; k < image.objects.size(); ++k) {
       const ImageRecord::Object& o = image.objects[k];

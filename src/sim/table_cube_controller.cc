@@ -37,8 +37,39 @@ void SetAllArms(Episode& ep, const PandaJointVector& q_rad) {
   for (const WorldArm& arm : ep.world.arms) MoveJointsTo(ep.world, arm, q_rad, internal::kMove_s);
 }
 
-// The cube's centre as the camera sees it in its full image, or a perception fault. `metric`
-// names the sighting's error in the outcome's metrics.
+constexpr const char* kHandoverMetric = "sighting_error_handover_m";
+
+// The cube's centre as the options' perception answers `request`: an ending when it has none,
+// or when the answer is off the table's top (the arm is never sent there).
+Eigen::Vector3d AskPerception(Episode& ep, const CubeSightingRequest& request,
+                              const std::string& when) {
+  CubeSightingAnswer answer = ep.options.perception(request);
+  if (!answer.p_WCube) {
+    End(answer.outcome.empty() ? "perception-fault" : answer.outcome,
+        fmt::format("the perception found no cube {}: {}", when, answer.detail));
+  }
+  const Eigen::Vector3d p = *answer.p_WCube;
+  const exporting::Body* table = ep.world.FindFirst("Table");
+  if (table) {
+    const Eigen::Vector3d offset = table->R_WO.conjugate() * (p - table->p_WO);
+    const double above_top_m = offset.z() - table->size.z() / 2;
+    const bool over =
+        std::abs(offset.x()) <= table->size.x() / 2 && std::abs(offset.y()) <= table->size.y() / 2;
+    if (!over || above_top_m < -ep.options.cube_size_m || above_top_m > kMaxAboveTable_m) {
+      End("perception-fault",
+          fmt::format(
+              "the perception placed the cube {} at ({:.3f}, {:.3f}, {:.3f}) m, off the "
+              "table's top ({})",
+              when, p.x(), p.y(), p.z(),
+              over ? fmt::format("{:.3f} m above it", above_top_m) : "outside its footprint"));
+    }
+  }
+  return p;
+}
+
+// The cube's centre as the camera sees it in its full image (by the options' perception when
+// there is one), or a perception fault. `metric` names the sighting's error in the outcome's
+// metrics.
 Eigen::Vector3d SeeBlueBlob(Episode& ep, const std::string& when, const std::string& metric) {
   const TableCubeOptions& options = ep.options;
   if (options.clear_view_before_sighting) SetAllArms(ep, CalcClearViewPose());
@@ -46,11 +77,16 @@ Eigen::Vector3d SeeBlueBlob(Episode& ep, const std::string& when, const std::str
   const render::Image image = ep.renderer->Render(*ep.world.data, ep.camera_id, &depth);
   const PinholeCamera camera =
       GetMujocoCamera(*ep.world.model, *ep.world.data, ep.camera_id, image.width, image.height);
-  const std::optional<ColorBlob> blob = FindLargestBlob(image, IsBluePixel);
-  if (!blob) End("perception-fault", "no blue blob in the camera image " + when);
-  const double d = MedianDepth(depth, *blob);
-  const Eigen::Vector3d p_top = BackProject(camera, blob->centroid_px, d);
-  const Eigen::Vector3d p_center = p_top - Eigen::Vector3d::UnitZ() * (options.cube_size_m / 2);
+  Eigen::Vector3d p_center;
+  if (options.perception) {
+    p_center = AskPerception(ep, {image, depth, camera, metric == kHandoverMetric}, when);
+  } else {
+    const std::optional<ColorBlob> blob = FindLargestBlob(image, IsBluePixel);
+    if (!blob) End("perception-fault", "no blue blob in the camera image " + when);
+    const double d = MedianDepth(depth, *blob);
+    const Eigen::Vector3d p_top = BackProject(camera, blob->centroid_px, d);
+    p_center = p_top - Eigen::Vector3d::UnitZ() * (options.cube_size_m / 2);
+  }
   ep.RecordSightingError(p_center, ep.TrueCubePosition(), metric);
   if (options.clear_view_before_sighting) SetAllArms(ep, kPandaReadyPose_rad);
   return p_center;
@@ -124,8 +160,7 @@ void RunRealisticTask(Episode& ep, TaskOutcome& outcome) {
     End("poor-grip",
         fmt::format("the cube came down {:.1f} cm from the hand-over point", 100 * slip));
   }
-  const Eigen::Vector3d p_seen_again =
-      SeeBlueBlob(ep, "after the hand-over", "sighting_error_handover_m");
+  const Eigen::Vector3d p_seen_again = SeeBlueBlob(ep, "after the hand-over", kHandoverMetric);
   const WorldArm& second = NearestArm(ep, p_seen_again, &first);
   PickCube(ep, second, p_seen_again);
   const exporting::Body* tray = FindNearest(world.scene, "Tray", second.X_WBase.translation());

@@ -11,13 +11,17 @@
 // compares with it.
 #pragma once
 
+#include <Eigen/Core>
+#include <functional>
 #include <memory>
 #include <optional>
 #include <string>
 #include <utility>
 #include <vector>
 
+#include "camera/camera.h"
 #include "lang/scene.h"
+#include "render/render.h"
 
 namespace prs::render {
 class ModelRenderer;
@@ -26,6 +30,28 @@ class ModelRenderer;
 namespace prs::sim {
 
 enum class TableCubeVariant { kRealistic, kPaper };
+
+/// What a learned perception is shown at one sighting: the ceiling camera's picture (rows from
+/// the top), its depth (metres along the look axis) and the camera's pose and field of view.
+struct CubeSightingRequest {
+  const render::Image& rgb;
+  const render::DepthImage& depth;
+  const camera::PinholeCamera& camera;
+  int sighting = 0;  // 0: at the start; 1: after the hand-over
+};
+
+/// What it answers: the cube's centre in the world frame (metres), or, when it has none,
+/// the episode's outcome ("perception-fault": it saw no cube; "controller-error": the
+/// perception itself failed) and a sentence saying why.
+struct CubeSightingAnswer {
+  std::optional<Eigen::Vector3d> p_WCube;
+  std::string outcome;
+  std::string detail;
+};
+
+/// A perception the controller calls instead of its own colour-blob detector (the learned
+/// model of `prs test --perception CMD`, bound in src/controllers).
+using CubePerception = std::function<CubeSightingAnswer(const CubeSightingRequest&)>;
 
 struct TableCubeOptions {
   TableCubeVariant variant = TableCubeVariant::kRealistic;
@@ -40,7 +66,15 @@ struct TableCubeOptions {
   /// The fix documented in docs/case_study.md: turn both arms away (joint 1 to the back)
   /// before each picture, so that no arm hides the cube from the ceiling camera.
   bool clear_view_before_sighting = false;
+  /// kRealistic only: where the cube is comes from this function instead of the blue blob.
+  /// An answer off the table's top (outside its footprint, more than kMaxAboveTable_m above it,
+  /// or more than the cube's size below it) ends the episode as "perception-fault" before any
+  /// arm moves there.
+  CubePerception perception = nullptr;
 };
+
+/// How far above the table's top a perceived cube's centre may be.
+inline constexpr double kMaxAboveTable_m = 0.3;
 
 /// The original tool's controller: kPaper with its 256 x 256 depth camera.
 TableCubeOptions MakePaperTableCubeOptions();
