@@ -4,6 +4,7 @@
 #include <fmt/format.h>
 
 #include <filesystem>
+#include <stdexcept>
 
 #include "cli/text_table.h"
 #include "controllers/builtin.h"
@@ -61,15 +62,12 @@ std::optional<harness::ControllerFactory> ChooseController(const ControllerArgs&
   const controllers::ControllerChoice choice{args.controller,        args.exec,
                                              args.timeout_s,         args.persistent,
                                              args.startup_timeout_s, args.perception};
-  if (!args.perception.empty() && !controllers::TakesPerception(args.controller)) {
-    PrintError(
-        "--perception: only --controller table-cube and table-cube-clear-view take a "
-        "perception worker" +
-        (args.controller.empty() ? std::string(", and no --controller was given")
-                                 : ", not '" + args.controller + "'"));
+  try {
+    if (auto factory = controllers::MakeControllerFactory(choice, &cancel)) return factory;
+  } catch (const std::invalid_argument& error) {  // options that do not fit together
+    PrintError(error.what());
     return std::nullopt;
   }
-  if (auto factory = controllers::MakeControllerFactory(choice, &cancel)) return factory;
   std::vector<std::string> names;
   for (const harness::ControllerInfo& info : harness::ListControllers()) names.push_back(info.name);
   const std::string suggestion = lang::SuggestClosest(args.controller, names);

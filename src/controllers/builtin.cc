@@ -116,18 +116,14 @@ std::string ListControllerNames() {
   return names;
 }
 
-bool TakesPerception(const std::string& name) {
-  return name == "table-cube" || name == "table-cube-clear-view";
-}
-
 std::optional<harness::ControllerFactory> MakeControllerFactory(const ControllerChoice& choice,
                                                                 const std::atomic<bool>* cancel) {
   if (!choice.perception.empty()) {
-    if (!TakesPerception(choice.name)) {
+    if (choice.name != "table-cube" && choice.name != "table-cube-clear-view") {
       throw std::invalid_argument(
-          "--perception: only the controllers table-cube and table-cube-clear-view take a "
+          "--perception: only --controller table-cube and table-cube-clear-view take a "
           "perception worker" +
-          (choice.name.empty() ? std::string(" (give --controller table-cube)")
+          (choice.name.empty() ? std::string(", and no --controller was given")
                                : ", not '" + choice.name + "'"));
     }
     sim::TableCubeOptions options;

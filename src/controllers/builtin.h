@@ -34,15 +34,13 @@ struct ControllerChoice {
   std::string perception = {};
 };
 
-/// Whether the built-in controller `name` takes a --perception worker.
-bool TakesPerception(const std::string& name);
-
 /// The factory of the shell command `choice.exec` when it is not empty (harness::ExecController,
 /// or with `persistent` harness::MakePersistentControllerFactory's, with the timeouts and
 /// `cancel`, warning with kNoFreeBodyWarning on scenes without a free body), else of the
 /// registered controller `choice.name`; nullopt when no controller has that name. With
-/// `choice.perception`, table-cube's with a pool of perception workers; std::invalid_argument
-/// when the controller takes none (TakesPerception). Registers the built-in controllers first.
+/// `choice.perception`, table-cube's with a pool of perception workers; std::invalid_argument,
+/// saying what to give, when the controller is not table-cube or table-cube-clear-view, or the
+/// perception's command or timeouts are not usable. Registers the built-in controllers first.
 std::optional<harness::ControllerFactory> MakeControllerFactory(const ControllerChoice& choice,
                                                                 const std::atomic<bool>* cancel);
 
