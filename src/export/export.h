@@ -84,6 +84,13 @@ struct ExportScene {
   /// carries the contact model it was settled with, elliptic friction cones with impratio 10,
   /// which keeps a pile from creeping (docs/physics.md).
   bool settled = false;
+  /// The room MuJoCo keeps for contacts (`<size nconmax njmax>`): this many a free body, each
+  /// of 4 constraint rows; contacts past the room are dropped and bodies sink into each other.
+  /// Exports keep 20, and MuJoCo 2.2's default (100 contacts) where that is more. The
+  /// simulations of sim/stability.h first try less (StabilityOptions::
+  /// first_contacts_per_free_body).
+  int contacts_per_free_body = kExportContactsPerFreeBody;
+  static constexpr int kExportContactsPerFreeBody = 20;
 };
 
 /// Applies the export rules (docs/export.md) to a sampled scene. Never throws for odd

@@ -168,13 +168,15 @@ void AppendBody(const Body& body, MeshAssets& assets, std::string& out) {
 
 // MuJoCo 2.2 keeps room for 100 contacts and 500 constraint rows unless told otherwise; a pile
 // of free bodies touches in more places than that, and contacts past the room are dropped
-// (bodies then sink into each other). Room for 20 contacts a free body, each of 4 rows.
+// (bodies then sink into each other). Room for ExportScene::contacts_per_free_body contacts a
+// free body, each of 4 rows; exports leave MuJoCo's default where it is room enough.
 std::string SizeElement(const ExportScene& scene) {
   int free_bodies = 0;
   for (const Body& body : scene.bodies) free_bodies += body.is_free() && body.collides;
-  constexpr int kContactsPerFreeBody = 20, kRowsPerContact = 4;
-  if (free_bodies * kContactsPerFreeBody <= 100) return "";
-  const int contacts = free_bodies * kContactsPerFreeBody;
+  constexpr int kRowsPerContact = 4;
+  const int contacts = free_bodies * scene.contacts_per_free_body;
+  const bool exported = scene.contacts_per_free_body == ExportScene::kExportContactsPerFreeBody;
+  if (free_bodies == 0 || (exported && contacts <= 100)) return "";
   return fmt::format("  <size nconmax=\"{}\" njmax=\"{}\"/>\n", contacts,
                      std::max(500, contacts * kRowsPerContact));
 }

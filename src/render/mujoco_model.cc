@@ -44,7 +44,10 @@ constexpr char kRenderModelXmlEnd[] = R"(  </worldbody>
 </mujoco>
 )";
 
+thread_local bool warnings_muted = false;  // MujocoWarningsMuted
+
 void PrintMujocoWarning(const char* message) {
+  if (warnings_muted) return;
   std::fprintf(stderr, "prs: MuJoCo warning: %s\n", message);
 }
 
@@ -75,6 +78,11 @@ ModelPtr LoadRenderModel(const std::vector<MeshKey>& meshes) {
 std::string RenderMeshName(size_t index) { return "mesh" + std::to_string(index); }
 
 }  // namespace internal
+
+MujocoWarningsMuted::MujocoWarningsMuted() : was_muted_(internal::warnings_muted) {
+  internal::warnings_muted = true;
+}
+MujocoWarningsMuted::~MujocoWarningsMuted() { internal::warnings_muted = was_muted_; }
 
 void InstallMujocoMessageHandlers() {
   mju_user_warning = internal::PrintMujocoWarning;

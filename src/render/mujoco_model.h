@@ -33,6 +33,20 @@ ModelPtr LoadModelFromXml(const std::string& xml);
 /// A fresh mjData for `model`, at the model's initial state.
 DataPtr MakeData(const mjModel& model);
 
+/// While one is alive, MuJoCo's warnings raised on this thread are not printed (errors still
+/// are): for a simulation that is run again, with more room, when it raises one
+/// (sim/stability.cc). The warnings are still counted in mjData::warning.
+class MujocoWarningsMuted {
+ public:
+  MujocoWarningsMuted();
+  ~MujocoWarningsMuted();
+  MujocoWarningsMuted(const MujocoWarningsMuted&) = delete;
+  MujocoWarningsMuted& operator=(const MujocoWarningsMuted&) = delete;
+
+ private:
+  bool was_muted_;
+};
+
 /// Routes MuJoCo's warnings and errors to stderr instead of its defaults, which write
 /// MUJOCO_LOG.TXT into the working directory. Called by LoadModelFromXml.
 void InstallMujocoMessageHandlers();

@@ -10,16 +10,6 @@
 
 namespace prs::sim {
 
-namespace {
-
-// Settling steps 4 ms at a time: twice MuJoCo's default, about half the cost of a settled
-// second. A pile stays within the give of soft contacts at this step (the deepest contact of a
-// settled bin pile measured 2 to 4 mm, as at 2 ms), and what matters is where it ends: the
-// tests step the settled scene's MJCF again at MuJoCo's 2 ms and check that it stays put.
-constexpr double kSettleTimestep_s = 0.004;
-
-}  // namespace
-
 void CheckSettleOptions(const SettleOptions& options) {
   if (!(std::isfinite(options.duration_s) && options.duration_s > 0)) {
     throw std::invalid_argument(fmt::format(
@@ -31,13 +21,19 @@ void CheckSettleOptions(const SettleOptions& options) {
         "every body is where it was {} s before (docs/physics.md)",
         kMinSettleDuration_s, options.duration_s, kMinSettleDuration_s));
   }
+  if (!(std::isfinite(options.timestep_s) && options.timestep_s > 0 &&
+        options.timestep_s <= 0.01)) {
+    throw std::invalid_argument(fmt::format(
+        "the settling step must be a positive number of seconds up to 0.01, not {}",
+        options.timestep_s));
+  }
 }
 
 StabilityReport SettleScene(lang::Scene& scene, const SettleOptions& options) {
   CheckSettleOptions(options);
   StabilityOptions simulate;
   simulate.duration_s = options.duration_s;
-  simulate.timestep_s = kSettleTimestep_s;
+  simulate.timestep_s = options.timestep_s;
   exporting::ExportScene model = exporting::MakeExportScene(scene, "settle");
   CheckFreeBodiesCollide(scene, model, "--settle");
   model.settled = true;  // settled with the contact model its exports will carry

@@ -14,12 +14,19 @@
 
 namespace prs::sim {
 
+/// The physics step settling takes unless told otherwise: a little over three times MuJoCo's
+/// 2 ms, and a divisor of the 0.1 s between rest checks (docs/physics.md, "Step", says what it
+/// was chosen on: bench/settle_profile --check).
+inline constexpr double kSettleTimestep_s = 0.00625;
+
 struct SettleOptions {
   double duration_s = 3.0;  // simulated time at most: a scene not at rest by then is unsettled
+  double timestep_s = kSettleTimestep_s;  // MuJoCo's step while settling
 };
 
 /// Throws std::invalid_argument when duration_s is not a positive finite number, or is below
-/// kMinSettleDuration_s (0.5 s: rest is judged over the last 0.5 s; sim/stability.h).
+/// kMinSettleDuration_s (0.5 s: rest is judged over the last 0.5 s; sim/stability.h), or
+/// timestep_s is not a positive number of at most 10 ms.
 void CheckSettleOptions(const SettleOptions& options);
 
 /// Simulates the scene's free bodies under gravity until every one is at rest (within 1 cm and

@@ -251,6 +251,24 @@ void StepUntilSettled(Simulation& s, StabilityReport& report) {
   }
 }
 
+// The simulation of `scene` to rest (StabilityReport's at_rest and culprit), or until time ran
+// out.
+Simulation Simulate(const exporting::ExportScene& scene, const StabilityOptions& options,
+                    bool stop_past_tolerance, StabilityReport& report) {
+  Simulation simulation = StartSimulation(scene, options);
+  if (stop_past_tolerance) {
+    StepUntilStillOrPastTolerance(simulation, options, report);
+  } else {
+    StepUntilSettled(simulation, report);
+  }
+  return simulation;
+}
+
+// Whether a step dropped contacts or constraint rows for want of room.
+bool RanOutOfRoom(const mjData& data) {
+  return data.warning[mjWARN_CONTACTFULL].number > 0 || data.warning[mjWARN_CNSTRFULL].number > 0;
+}
+
 }  // namespace
 
 void CheckStabilityOptions(const StabilityOptions& options) {
@@ -319,11 +337,20 @@ StabilityReport SimulateUnderGravity(const exporting::ExportScene& scene,
     report.at_rest = true;
     return report;
   }
-  Simulation simulation = StartSimulation(scene, options);
-  if (stop_past_tolerance) {
-    StepUntilStillOrPastTolerance(simulation, options, report);
-  } else {
-    StepUntilSettled(simulation, report);
+  // First with room for options.first_contacts_per_free_body contacts a body; a simulation in
+  // which a step ran out of it runs again with the scene's own room, so the result is the same
+  // as with that room from the start (MuJoCo computes the same with more room to spare).
+  Simulation simulation;
+  const int first_room = options.first_contacts_per_free_body;
+  if (first_room > 0 && first_room < scene.contacts_per_free_body) {
+    exporting::ExportScene tight = scene;
+    tight.contacts_per_free_body = first_room;
+    render::MujocoWarningsMuted muted;
+    simulation = Simulate(tight, options, stop_past_tolerance, report);
+  }
+  if (!simulation.data || RanOutOfRoom(*simulation.data)) {
+    report = StabilityReport();
+    simulation = Simulate(scene, options, stop_past_tolerance, report);
   }
   report.simulated_s = simulation.data->time;
   for (size_t k = 0; k < simulation.joints.size(); ++k) {

@@ -29,6 +29,13 @@ struct StabilityOptions {
   double max_move_m = 0.01;            // a free body whose centre moves further is unstable
   double max_turn_rad = 0.0872664626;  // ... or that turns further (5°)
   double timestep_s = 0;               // physics step; 0: the model's (MuJoCo's 2 ms)
+  /// The room for contacts first tried (exporting::ExportScene::contacts_per_free_body; 0: the
+  /// scene's own). MuJoCo 2.2's data grows with the square of the constraint rows it has room
+  /// for: a 25-body pile with the exports' room of 20 contacts a body takes 56 MB, 32 ms to
+  /// compile and 25 ms to allocate, a tenth of its settling, and never used more than 5.2 a
+  /// body (130 contacts, 492 rows, bin_pile). A simulation in which a step ran out of this room
+  /// is run again with the scene's own, so the result does not depend on it.
+  int first_contacts_per_free_body = 8;
 };
 
 /// Throws std::invalid_argument naming the option when a value is not a positive finite

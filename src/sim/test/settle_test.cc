@@ -272,3 +272,47 @@ TEST(SettleTest, TheBinPileEndsInsideTheBinAtRest) {
 
 }  // namespace
 }  // namespace prs::sim
+
+namespace prs::sim {
+namespace {
+
+// Simulations first try little room for contacts (StabilityOptions::first_contacts_per_free_body)
+// and run again with the scene's own room when a step ran out of it: a heap of 14 cubes dropped
+// on each other (dozens of contacts) simulated with a first room of 1 contact a body (which it
+// runs out of) ends bit for bit where it ends with the export's room from the start, and the
+// first try's MuJoCo warnings are not printed.
+TEST(SettleTest, TooLittleRoomForContactsIsTriedAgainWithTheScenesOwn) {
+  const auto program = Compile(std::string(kTable) +
+                               "for i in range(14):\n"
+                               "    Cube at V3D(Range(-0.06, 0.06), Range(-0.06, 0.06), "
+                               "Range(0.9, 1.4))\n");
+  const lang::Scene scene = sampling::SampleScene(*program, 3, 0).scene;
+  const exporting::ExportScene model = exporting::MakeExportScene(scene, "heap");
+  StabilityOptions options;
+  options.duration_s = 1.0;
+  options.timestep_s = kSettleTimestep_s;
+  options.first_contacts_per_free_body = 1;
+  testing::internal::CaptureStderr();
+  const StabilityReport retried = SimulateUnderGravity(model, options, false);
+  EXPECT_EQ(testing::internal::GetCapturedStderr(), "");
+  options.first_contacts_per_free_body = 0;  // the export's 20 from the start
+  const StabilityReport roomy = SimulateUnderGravity(model, options, false);
+  // 14 free bodies at 1 contact each leave room for 14; the heap has more.
+  exporting::ExportScene tight = model;
+  tight.contacts_per_free_body = 1;
+  const ModelPtr m = LoadModelFromXml(exporting::WriteScene(tight, exporting::Format::kMjcf));
+  EXPECT_EQ(m->nconmax, 14);
+  const ModelPtr wide = LoadModelFromXml(exporting::WriteScene(model, exporting::Format::kMjcf));
+  const DataPtr d = MakeData(*wide);
+  while (d->time < retried.simulated_s / 2) mj_step(wide.get(), d.get());
+  EXPECT_GT(d->ncon, 14);
+  ASSERT_EQ(retried.free_bodies.size(), 14u);
+  EXPECT_EQ(retried.simulated_s, roomy.simulated_s);
+  for (size_t k = 0; k < retried.free_bodies.size(); ++k) {
+    EXPECT_EQ(retried.free_bodies[k].p_end_WO, roomy.free_bodies[k].p_end_WO) << k;
+    EXPECT_EQ(retried.free_bodies[k].R_end_WO.coeffs(), roomy.free_bodies[k].R_end_WO.coeffs());
+  }
+}
+
+}  // namespace
+}  // namespace prs::sim
