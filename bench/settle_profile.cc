@@ -199,6 +199,9 @@ int main(int argc, char** argv) {
     if (rejection) {
       ++split.rejected;
       split.rejected_s += took_s;
+      if (std::getenv("SETTLE_PROFILE_VERBOSE")) {
+        fmt::print("  rejected: {}: {}\n", rejection->culprit, rejection->detail);
+      }
     }
     Profile(drawn, scene.settled_s.value_or(0), settle_options.timestep_s, split);
     if (reference_step_s > 0) {

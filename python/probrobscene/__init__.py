@@ -68,10 +68,11 @@ def load(path: PathLike, params: Optional[Mapping[str, ParamValue]] = None,
             ``stable_move`` metres or turns more than ``stable_turn`` degrees is rejected as
             "unstable" (docs/physics.md).
         settle: Let the free bodies fall and come to rest, and give the scenes as they end
-            (``prs --settle``): ``True`` allows 3 s of simulated time, a number that many
-            seconds (at least 0.5: rest is judged over the last 0.5 s); a scene not at rest
-            by then, with an object outside the workspace, or breaking a ``require
-            settled``, is rejected as "unsettled" (docs/physics.md). Not with ``stable``.
+            (``prs --settle``): ``True`` allows 4 s of simulated time to find rest, a number
+            that many seconds (at least 0.5: rest is judged over the last 0.5 s, then confirmed
+            for 1 s from standstill); a scene not at rest by then, with an object outside the
+            workspace, or breaking a ``require settled``, is rejected as "unsettled"
+            (docs/physics.md). Not with ``stable``.
         sampler: ``"rejection"`` (exact, the default), ``"partial-rejection"`` (``prs --sampler
             partial-rejection``: exact, independent scenes of clutter, objects that only must not
             overlap, by partial rejection sampling) or ``"gibbs"`` (``prs --sampler gibbs``):
@@ -137,7 +138,7 @@ def _load_options(params, search_path, max_attempts, naive, stable=None, stable_
         options.stable_move_m = float(stable_move)
         options.stable_turn_deg = float(stable_turn)
     if settle is not None and settle is not False:
-        options.settle_s = _seconds("settle", settle, 3.0)
+        options.settle_s = _seconds("settle", settle, 4.0)
     if sampler not in ("rejection", "partial-rejection", "gibbs"):
         raise ValueError(
             f"sampler must be 'rejection', 'partial-rejection' or 'gibbs', got {sampler!r}")

@@ -95,7 +95,7 @@ def test_settle_matches_prs_and_bad_values_are_refused(prs_binary, tmp_path):
                      "--settle")
     assert result.returncode == 0, result.stderr
     scenario = prs.load(path, search_path=[EXAMPLES], settle=True)
-    assert scenario.settle == 3.0
+    assert scenario.settle == 4.0
     assert [s.to_json() for s in scenario.sample_batch(6, seed=3, threads=2)] == \
         result.stdout.splitlines()
     assert '"settled_s"' in result.stdout and "unsettled" in result.stdout

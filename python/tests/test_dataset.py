@@ -62,3 +62,41 @@ def test_bad_input(table_cube, tmp_path):
     with pytest.raises(RuntimeError, match="not an empty directory"):
         prs.dataset(scenes, tmp_path / "c")
     assert (tmp_path / "c" / "keep").read_text() == "mine"
+
+
+def test_several_views_of_one_settled_pile(prs_binary, tmp_path):
+    """examples/bin_pile.prs with -p views=3: one settled pile seen by three cameras. Every view
+    labels each object at the pose `prs sample --settle` gives the same scene (the world pose
+    recovered here from cam_R_w2c/cam_t_w2c and cam_R_m2c/cam_t_m2c), and the cameras differ."""
+    import numpy as np
+    common = [str(EXAMPLES / "bin_pile.prs"), "--settle", "-p", "views=3", "-s", "1", "-n", "1"]
+    result = run_prs(prs_binary, "dataset", *common, "--size", "64x48", "-o", str(tmp_path / "d"))
+    assert result.returncode == 0, result.stderr
+    sampled = run_prs(prs_binary, "sample", *common)
+    assert sampled.returncode == 0, sampled.stderr
+    scene = json.loads(sampled.stdout)
+    assert scene["settled_s"] > 0.5
+    chunk = tmp_path / "d/train_pbr/000000"
+    cameras = json.loads((chunk / "scene_camera.json").read_text())
+    gt = json.loads((chunk / "scene_gt.json").read_text())
+    assert sorted(cameras) == ["0", "1", "2"]  # scene 0 makes images 0, 1 and 2
+    assert len({tuple(c["cam_t_w2c"]) for c in cameras.values()}) == 3
+    # The objects with a mass, in scene order: the labels' objects (every class is labelled).
+    piled = [o for o in scene["objects"] if o["properties"].get("mass", 0) > 0]
+    assert len(piled) == 25
+    for im_id, camera in cameras.items():
+        R_CW = np.array(camera["cam_R_w2c"]).reshape(3, 3)
+        p_CW_mm = np.array(camera["cam_t_w2c"])
+        p_WO_of_label = []
+        for label in gt[im_id]:
+            R_CO = np.array(label["cam_R_m2c"]).reshape(3, 3)
+            p_CO_mm = np.array(label["cam_t_m2c"])
+            p_WO_of_label.append((R_CW.T @ (p_CO_mm - p_CW_mm) / 1000, R_CW.T @ R_CO))
+        for o in piled:
+            w, x, y, z = o["orientation"]["quaternion"]
+            R_WO = np.array([[1 - 2 * (y * y + z * z), 2 * (x * y - w * z), 2 * (x * z + w * y)],
+                             [2 * (x * y + w * z), 1 - 2 * (x * x + z * z), 2 * (y * z - w * x)],
+                             [2 * (x * z - w * y), 2 * (y * z + w * x), 1 - 2 * (x * x + y * y)]])
+            p_WO = np.array(o["position"])
+            assert any(np.abs(p - p_WO).max() < 1e-6 and np.abs(R - R_WO).max() < 1e-6
+                       for p, R in p_WO_of_label), (im_id, o["class"], p_WO)

@@ -235,10 +235,10 @@ void AddSamplingOptions(CLI::App& command, SamplingArgs& args) {
       ->check(PositiveNumber("degrees"))
       ->capture_default_str();
   command
-      .add_flag("--settle{3}", args.settle_s,
-                "let the free bodies fall and come to rest (at most T simulated seconds: "
-                "--settle=T; default 3, at least 0.5), then check the workspace and `require "
-                "settled` (docs/physics.md)")
+      .add_flag("--settle{4}", args.settle_s,
+                "let the free bodies fall and come to rest (found at rest within T simulated "
+                "seconds, then confirmed for 1 s: --settle=T; default 4, at least 0.5), then "
+                "check the workspace and `require settled` (docs/physics.md)")
       ->check(PositiveNumber("seconds"))
       ->check(PhysicsCheckTakes([](double t) { sim::CheckSettleOptions({t}); }))
       ->excludes("--stable");

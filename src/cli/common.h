@@ -48,7 +48,7 @@ struct SamplingArgs {
   std::string stable_s;
   double stable_move_m = 0.01;
   double stable_turn_deg = 5;
-  /// --settle[=T]: the simulated seconds scenes get to come to rest, as given ("3" for a bare
+  /// --settle[=T]: the simulated seconds scenes get to come to rest, as given ("4" for a bare
   /// --settle); empty when off.
   std::string settle_s;
 };

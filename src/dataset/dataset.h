@@ -112,8 +112,8 @@ struct StageSeconds {
 
 /// Renders `scene` through `camera` (a name as DatasetOptions::cameras) and labels every object
 /// whose class is in `class_ids` (the obj_id of class_ids[i] is i + 1) and `labels` (empty:
-/// all), except points and the camera itself. Throws std::invalid_argument naming the camera
-/// when the scene has no such object or it lacks fovy_deg, aspect, near or far.
+/// all), except points, lights and cameras (not drawn). Throws std::invalid_argument naming
+/// the camera when the scene has no such object or it lacks fovy_deg, aspect, near or far.
 LabelledView RenderLabelledView(render::Renderer& renderer, const render::RenderScene& scene,
                                 const std::string& camera, const DatasetOptions& options,
                                 const std::vector<std::string>& class_ids);

@@ -152,16 +152,19 @@ LabelledView RenderLabelledView(render::Renderer& renderer, const render::Render
       options.height > 0 ? options.height : int(std::lround(kDefaultWidth / viewpoint.aspect));
   view.view = {render::ViewKind::kCamera, camera};
   view.decorations = false;
-  // The objects labelled: of a class asked for, with a solid, not the camera itself.
+  // The objects labelled: of a class asked for, with a solid; not cameras (viewpoints, not
+  // drawn without decorations: a scene's several views), lights or points.
   std::vector<int> labelled;
   std::vector<int> obj_ids;
+  bool asked_for_a_camera = false;
   for (size_t i = 0; i < scene.objects.size(); ++i) {
     const render::RenderObject& o = scene.objects[i];
-    if (&o == &viewpoint || o.shape == render::ObjectShape::kPoint ||
-        o.shape == render::ObjectShape::kLight)
-      continue;
     if (!options.labels.empty() && std::find(options.labels.begin(), options.labels.end(),
                                              o.class_name) == options.labels.end())
+      continue;
+    asked_for_a_camera |= o.shape == render::ObjectShape::kCamera && !options.labels.empty();
+    if (o.shape == render::ObjectShape::kCamera || o.shape == render::ObjectShape::kPoint ||
+        o.shape == render::ObjectShape::kLight)
       continue;
     const auto id = std::find(class_ids.begin(), class_ids.end(), o.class_name);
     if (id == class_ids.end())
@@ -174,6 +177,10 @@ LabelledView RenderLabelledView(render::Renderer& renderer, const render::Render
     throw std::invalid_argument(
         options.labels.empty()
             ? fmt::format("camera '{}' has nothing to label: the scene has no other object", camera)
+        : asked_for_a_camera
+            ? fmt::format("--label {}: cameras are not labelled (they are the viewpoints, not "
+                          "drawn in a dataset's pictures); label the objects they see",
+                          JoinNames(options.labels))
             : fmt::format("the scene has no object of class {} to label (--label)",
                           JoinNames(options.labels)));
   }

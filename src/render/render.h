@@ -115,8 +115,8 @@ struct RenderOptions {
   int height = 480;
   View view;
   double camera_fovy_deg = 45.0;  // vertical field of view of the framings (overview, top, front)
-  /// Box edges, camera bodies' frusta, point markers, outlines and the caption: off for a
-  /// dataset's pictures, which show the solids alone.
+  /// Box edges, camera bodies and their frusta, point markers, outlines and the caption: off
+  /// for a dataset's pictures, which show the solids alone (no camera is seen).
   bool decorations = true;
 };
 

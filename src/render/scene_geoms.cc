@@ -138,6 +138,9 @@ void AddObject(mjvScene& out, const RenderObject& o, double edge_width_m,
       if (!decorations) return;  // a marker, not a solid
       return AddSolid(out, mjGEOM_SPHERE, Eigen::Vector3d::Constant(0.02), o.p_WO, R_WO, o.color);
     case ObjectShape::kCamera:
+      // A dataset's picture: cameras are viewpoints, as in BlenderProc, not things in the
+      // scene (a pile's other views would float in it; docs/dataset.md).
+      if (!decorations) return;
       return AddCamera(out, o, decorations);
     case ObjectShape::kLight:
       return;  // it lights the scene (renderer.cc), it is not seen

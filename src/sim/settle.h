@@ -20,7 +20,9 @@ namespace prs::sim {
 inline constexpr double kSettleTimestep_s = 0.00625;
 
 struct SettleOptions {
-  double duration_s = 3.0;  // simulated time at most: a scene not at rest by then is unsettled
+  /// Simulated time to find rest in: a scene not found at rest by then is unsettled. The 1 s
+  /// confirmation of a pile found at rest in time may take the simulation past it.
+  double duration_s = 4.0;
   double timestep_s = kSettleTimestep_s;  // MuJoCo's step while settling
 };
 
@@ -30,8 +32,9 @@ struct SettleOptions {
 void CheckSettleOptions(const SettleOptions& options);
 
 /// Simulates the scene's free bodies under gravity until every one is at rest (within 1 cm and
-/// 0.1 rad of where it was 0.5 s before; sim/stability.h) or the time runs out, and moves each
-/// to where it ended (lang::MoveObject); sets scene.settled_s. Returns the motion
+/// 0.1 rad of where it was 0.5 s before, and again 1 s after being started from standstill
+/// there; sim/stability.h) or the time runs out, and moves each to where it ended
+/// (lang::MoveObject); sets scene.settled_s. Returns the motion
 /// (StabilityReport::at_rest false when time ran out, culprit the body furthest from rest).
 /// Deterministic. Throws what SimulateUnderGravity and CheckFreeBodiesCollide throw.
 StabilityReport SettleScene(lang::Scene& scene, const SettleOptions& options);

@@ -29,6 +29,7 @@ constexpr double kSettleWindow_s = kMinSettleDuration_s;
 constexpr double kSettleCheck_s = 0.1;
 constexpr double kSettleMove_m = 0.01;
 constexpr double kSettleTurn_rad = 0.1;
+// A pile found at rest so is then confirmed from standstill (kSettleConfirm_s, stability.h).
 
 // The steps of `step_s` that `duration_s` takes, at least: ceil, but a quotient within a
 // millionth of a step of a whole number is that number (0.2 s of 2 ms steps is 100 steps, though
@@ -154,8 +155,9 @@ struct Simulation {
   std::vector<FreeJoint> joints;
   int steps = 0;  // the most steps options.duration_s allows
   // Per joint: the last time it was moving (--stable); how far it moved and turned over the
-  // last window compared (settling).
+  // last window compared (settling), or in the last confirmation when recent_confirmed.
   std::vector<double> moving_until_s, recent_move_m, recent_turn_rad;
+  bool recent_confirmed = false;
 };
 
 Simulation StartSimulation(const exporting::ExportScene& scene, const StabilityOptions& options) {
@@ -218,27 +220,69 @@ void StepUntilStillOrPastTolerance(Simulation& s, const StabilityOptions& option
   }
 }
 
+// Settling's confirmation (kSettleConfirm_s): starts the pile again from standstill at
+// `qpos` (velocities and the solver's warm start zero, as in a fresh mjData: what a settled
+// export starts from), steps it and says whether every body ended within the limits of where
+// it started; if so, puts the pile back at `qpos` at standstill. Either way the time stepped
+// counts, and recent_move_m/recent_turn_rad say how far each body went.
+bool ConfirmRest(Simulation& s, const std::vector<mjtNum>& qpos) {
+  const mjModel& model = *s.model;
+  mjData& data = *s.data;
+  const auto from_standstill = [&] {
+    std::copy(qpos.begin(), qpos.end(), data.qpos);
+    std::fill(data.qvel, data.qvel + model.nv, 0);
+    std::fill(data.qacc_warmstart, data.qacc_warmstart + model.nv, 0);
+  };
+  from_standstill();
+  const int steps = CountSteps(kSettleConfirm_s, model.opt.timestep);
+  for (int step = 0; step < steps; ++step) mj_step(&model, &data);
+  s.recent_confirmed = true;
+  const bool still = IsStillSince(s.joints, qpos, data, s.recent_move_m, s.recent_turn_rad);
+  if (still) {
+    const double time_s = data.time;
+    from_standstill();
+    mj_forward(&model, &data);
+    data.time = time_s;
+  }
+  return still;
+}
+
 // --settle: steps until every free body is where it was a window before (by position, checked
-// every kSettleCheck_s). When time runs out, the culprit is the one furthest from rest in the
-// last window compared: the most moved or turned, each as a share of its limit.
+// every kSettleCheck_s) and stays there when started again from standstill (ConfirmRest); a
+// pile that does not starts a new window from where the confirmation left it. When time runs
+// out, the culprit is the one furthest from rest in the last window or confirmation compared:
+// the most moved or turned, each as a share of its limit. The confirmation of a pile found at
+// rest within the time is made even when it takes the simulation past it.
 void StepUntilSettled(Simulation& s, StabilityReport& report) {
   const mjModel& model = *s.model;
   mjData& data = *s.data;
   const int check_steps =
       std::max(1, static_cast<int>(std::lround(kSettleCheck_s / model.opt.timestep)));
   const int window_checks = static_cast<int>(std::lround(kSettleWindow_s / kSettleCheck_s));
+  const int confirm_equivalent_steps = CountSteps(kSettleConfirm_s, model.opt.timestep);
   // The poses of the last window_checks checks, the oldest next to be compared and overwritten.
   std::vector<std::vector<mjtNum>> ring(window_checks,
                                         std::vector<mjtNum>(data.qpos, data.qpos + model.nq));
+  int checks = 0;  // since the window started filling
   for (int step = 1; step <= s.steps; ++step) {
     mj_step(&model, &data);
     if (step % check_steps != 0) continue;
-    const int check = step / check_steps;
-    std::vector<mjtNum>& window_start = ring[check % window_checks];
-    if (check >= window_checks &&
-        IsStillSince(s.joints, window_start, data, s.recent_move_m, s.recent_turn_rad)) {
-      report.at_rest = true;
-      return;
+    ++checks;
+    std::vector<mjtNum>& window_start = ring[checks % window_checks];
+    if (checks >= window_checks) {
+      if (IsStillSince(s.joints, window_start, data, s.recent_move_m, s.recent_turn_rad)) {
+        const std::vector<mjtNum> at_rest(data.qpos, data.qpos + model.nq);
+        if (ConfirmRest(s, at_rest)) {
+          report.at_rest = true;
+          return;
+        }
+        // Moving again: the time confirming took counts, and a new window starts here.
+        step += confirm_equivalent_steps - confirm_equivalent_steps % check_steps;
+        checks = 0;
+        for (std::vector<mjtNum>& pose : ring) pose.assign(data.qpos, data.qpos + model.nq);
+        continue;
+      }
+      s.recent_confirmed = false;
     }
     window_start.assign(data.qpos, data.qpos + model.nq);
   }
@@ -289,9 +333,13 @@ void CheckStabilityOptions(const StabilityOptions& options) {
 }
 
 std::string DescribeUnsettledMotion(const BodyMotion& m) {
-  return fmt::format("moved {} and turned {:.1f}° in the last {} s (at rest: under {} and {:.1f}°)",
-                     FormatDistance(m.recent_move_m), m.recent_turn_rad * 180 / M_PI,
-                     kSettleWindow_s, FormatDistance(kSettleMove_m), kSettleTurn_rad * 180 / M_PI);
+  const std::string when =
+      m.recent_from_standstill
+          ? fmt::format("in {} s when started again from standstill", kSettleConfirm_s)
+          : fmt::format("in the last {} s", kSettleWindow_s);
+  return fmt::format("moved {} and turned {:.1f}° {} (at rest: under {} and {:.1f}°)",
+                     FormatDistance(m.recent_move_m), m.recent_turn_rad * 180 / M_PI, when,
+                     FormatDistance(kSettleMove_m), kSettleTurn_rad * 180 / M_PI);
 }
 
 void CheckFreeBodiesCollide(const lang::Scene& scene, const exporting::ExportScene& model,
@@ -359,6 +407,7 @@ StabilityReport SimulateUnderGravity(const exporting::ExportScene& scene,
     m.moving_until_s = simulation.moving_until_s[k];
     m.recent_move_m = simulation.recent_move_m[k];
     m.recent_turn_rad = simulation.recent_turn_rad[k];
+    m.recent_from_standstill = simulation.recent_confirmed;
     report.free_bodies.push_back(m);
   }
   return report;

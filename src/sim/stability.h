@@ -23,6 +23,12 @@ namespace prs::sim {
 /// shorter time would reject every scene, at rest or not (docs/physics.md).
 inline constexpr double kMinStableDuration_s = 0.2;
 inline constexpr double kMinSettleDuration_s = 0.5;
+/// Settling: a pile found at rest is started again from standstill (every velocity zero) and
+/// stepped this long; it has settled if every body then ends within 1 cm and 0.1 rad of where
+/// it started, and is written there: what its export does in MuJoCo. The window alone let a
+/// body creeping at under 2 cm/s, or one about to tip off an edge, pass (16 bin piles of 100;
+/// docs/physics.md, "Confirmed from standstill").
+inline constexpr double kSettleConfirm_s = 1.0;
 
 struct StabilityOptions {
   double duration_s = 1.0;             // simulated time at most (kMinStableDuration_s at least)
@@ -52,9 +58,11 @@ struct BodyMotion {
   double spin_rad_s = 0;                                // at the end
   /// --stable: the last time it was moving (faster than 5 mm/s or 0.05 rad/s), 0 if never.
   double moving_until_s = 0;
-  /// Settling: how far it moved and turned over the last rest window compared (0.5 s).
+  /// Settling: how far it moved and turned over the last rest window compared (0.5 s), or,
+  /// when recent_from_standstill, in the last confirmation (1 s from standstill).
   double recent_move_m = 0;
   double recent_turn_rad = 0;
+  bool recent_from_standstill = false;
   /// Where it ended: the pose of the object's frame (lang::SceneObject::p_WO, R_WO).
   Eigen::Vector3d p_end_WO = Eigen::Vector3d::Zero();
   Eigen::Quaterniond R_end_WO = Eigen::Quaterniond::Identity();
@@ -77,9 +85,11 @@ struct StabilityReport {
 /// `stop_past_tolerance` false (for settling, sim/settle.h) only rest or the time limit stops
 /// it, the tolerances are unused, and rest is judged by position: every free body within 1 cm
 /// and 0.1 rad of where it was 0.5 s before, checked every 0.1 s (round and mesh shapes rock in
-/// place in MuJoCo 2.2 and are never still). Throws std::runtime_error with MuJoCo's message
-/// when it refuses the model; std::invalid_argument for options CheckStabilityOptions refuses,
-/// and when settling, for a duration_s below kMinSettleDuration_s.
+/// place in MuJoCo 2.2 and are never still), and then again after the pile is started from
+/// standstill there and stepped kSettleConfirm_s (it ends at the poses that second started
+/// from). Throws std::runtime_error with MuJoCo's message when it refuses the model;
+/// std::invalid_argument for options CheckStabilityOptions refuses, and when settling, for a
+/// duration_s below kMinSettleDuration_s.
 StabilityReport SimulateUnderGravity(const exporting::ExportScene& scene,
                                      const StabilityOptions& options,
                                      bool stop_past_tolerance = true);

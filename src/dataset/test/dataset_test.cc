@@ -529,6 +529,49 @@ TEST(DatasetWriterTest, RefusesAnotherDatasetAndMissingIntrinsics) {
   fs::remove_all(dir);
 }
 
+// A scene's other cameras are viewpoints too, not things in its pictures: with a second camera
+// 0.4 m below `cam`, in the middle of its view, the picture's centre still sees the crate or the
+// lid (depth over 0.9 m, not 0.375), and only the crate and the lid are labelled.
+TEST(DatasetWriterTest, OtherCamerasAreNeitherDrawnNorLabelled) {
+  const fs::path dir =
+      fs::temp_directory_path() / ("prs_dataset_views_" + std::to_string(getpid()));
+  fs::remove_all(dir);
+  const auto program =
+      Compile(std::string(kProgram) + "other = Camera at V3D(0.05, 0.02, 1.2), with yaw 0.3, "
+                                      "with pitch -1.5707963267948966\n");
+  DatasetOptions options;
+  options.dir = (dir / "ds").string();
+  options.cameras = {"cam"};
+  options.width = 64;
+  options.height = 48;
+  DatasetWriter writer(options, {"Object", "Camera", "Crate", "Lid"});
+  writer.Add(*writer.RenderScene(SampleScene(*program), 0));
+  EXPECT_EQ(writer.Finish(), 1);
+  const fs::path chunk = dir / "ds" / "train_pbr" / "000000";
+  const json gt = ReadJson(chunk / "scene_gt.json")["0"];
+  ASSERT_EQ(gt.size(), 2u);
+  EXPECT_EQ(gt[0]["obj_id"], 3);
+  EXPECT_EQ(gt[1]["obj_id"], 4);
+  const double depth_scale = ReadJson(chunk / "scene_camera.json")["0"]["depth_scale"];
+  const auto depth = ReadPng(chunk / "depth/000000.png", PNG_FORMAT_LINEAR_Y);
+  for (int v = 22; v <= 25; ++v) {
+    for (int u = 30; u <= 33; ++u) EXPECT_GT(depth[v * 64 + u] * depth_scale, 900) << u << "," << v;
+  }
+  // Asking for cameras' labels says why there are none.
+  options.dir = (dir / "cams").string();
+  options.labels = {"Camera"};
+  DatasetWriter cameras(options, {"Object", "Camera", "Crate", "Lid"});
+  try {
+    cameras.RenderScene(SampleScene(*program), 0);
+    ADD_FAILURE() << "no error";
+  } catch (const std::invalid_argument& error) {
+    EXPECT_NE(std::string(error.what()).find("--label Camera: cameras are not labelled"),
+              std::string::npos)
+        << error.what();
+  }
+  fs::remove_all(dir);
+}
+
 // The width and height of a baseline JPEG from its SOF0 marker (FF C0), read here.
 std::pair<int, int> ReadJpegSize(const fs::path& path) {
   std::ifstream in(path, std::ios::binary);
